@@ -1,0 +1,32 @@
+#include "pena/geometry/segment2.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pena::geometry {
+
+double Length(const Segment2& segment) { return (segment.end_m - segment.start_m).norm(); }
+
+double DistanceToSegment(const Segment2& segment, const Eigen::Vector2d& point_m) {
+  const Eigen::Vector2d along = segment.end_m - segment.start_m;
+  const double length_sq = along.squaredNorm();
+  if (length_sq <= 0.0) return (point_m - segment.start_m).norm();
+  const double t = std::clamp((point_m - segment.start_m).dot(along) / length_sq, 0.0, 1.0);
+  return (point_m - (segment.start_m + t * along)).norm();
+}
+
+std::optional<double> RaySegmentIntersection(const Eigen::Vector2d& origin_m,
+                                             const Eigen::Vector2d& direction_unit,
+                                             const Segment2& segment) {
+  // Solve origin + r * d = start + t * (end - start) with Cramer's rule (2D cross products).
+  const Eigen::Vector2d edge = segment.end_m - segment.start_m;
+  const double denom = direction_unit.x() * edge.y() - direction_unit.y() * edge.x();
+  if (std::abs(denom) < 1e-12) return std::nullopt;  // parallel: a grazing ray sees no wall
+  const Eigen::Vector2d to_start = segment.start_m - origin_m;
+  const double range = (to_start.x() * edge.y() - to_start.y() * edge.x()) / denom;
+  const double t = (to_start.x() * direction_unit.y() - to_start.y() * direction_unit.x()) / denom;
+  if (range <= 0.0 || t < 0.0 || t > 1.0) return std::nullopt;
+  return range;
+}
+
+}  // namespace pena::geometry

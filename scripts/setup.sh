@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs PeNa's Debian 12 build dependencies (only those missing) and builds into build/.
+# Idempotent: a second run installs nothing and rebuilds only what changed.
+# Environment: PENA_BUILD_DIR (default build), PENA_WERROR (ON in CI), PENA_JOBS (default nproc).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
+  libprotobuf-dev protobuf-compiler libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev libnanoflann-dev zlib1g-dev
+  libfastrtps-dev fastddsgen
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  if [[ $(id -u) -ne 0 ]]; then
+    echo "setup: installing packages needs root (run as root, or install them yourself)" >&2
+    exit 1
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+build_dir=${PENA_BUILD_DIR:-build}
+werror=${PENA_WERROR:-OFF}
+if [[ "${CI:-}" == "true" ]]; then werror=ON; fi
+jobs=${PENA_JOBS:-$(nproc)}
+
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPENA_WERROR="$werror" >/dev/null
+cmake --build "$build_dir" -j "$jobs"

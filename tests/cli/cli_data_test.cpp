@@ -1,0 +1,108 @@
+// `pena info`, `pena export` and `pena eval` on the real Freiburg logs and on broken inputs.
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include "run_pena.hpp"
+
+namespace pena::testing {
+namespace {
+
+// A CARMEN FLASER line with `beams` ranges of 2 m at `stamp_s` (odometry at the origin).
+std::string FlaserLine(int beams, double stamp_s, const std::string& first_range = "2.0") {
+  std::string line = "FLASER " + std::to_string(beams) + " " + first_range;
+  for (int i = 1; i < beams; ++i) line += " 2.0";
+  const std::string stamp = std::to_string(stamp_s);
+  return line + " 0 0 0 0 0 0 " + stamp + " host " + stamp + "\n";
+}
+
+std::filesystem::path WriteText(const std::string& name, const std::string& text) {
+  const auto path = FreshDir("cli_" + name) / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+// Expects a failed run with exactly one error line naming `file` and `line`.
+void ExpectOneLineError(const PenaRun& run, const std::string& file, int line) {
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_NE(run.err.find(file + ":" + std::to_string(line) + ":"), std::string::npos) << run.err;
+}
+
+TEST(CliInfo, SummarisesMitCsailLog) {
+  const PenaRun run = RunPena("info " + Dataset("freiburg/mit-csail.clf.gz").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("1988"), std::string::npos) << run.out;  // scans
+  EXPECT_NE(run.out.find("361"), std::string::npos) << run.out;   // beams
+}
+
+TEST(CliInfo, TooFewRangesNamesFileAndLine) {
+  const auto path =
+      WriteText("short.clf", FlaserLine(181, 1.0) + FlaserLine(181, 1.25) + "FLASER 181 1.0 2.0\n");
+  ExpectOneLineError(RunPena("info " + path.string()), "short.clf", 3);
+}
+
+TEST(CliInfo, NanRangeNamesFileAndLine) {
+  const auto path = WriteText("nan.clf", FlaserLine(181, 1.0) + FlaserLine(181, 1.25, "nan"));
+  ExpectOneLineError(RunPena("info " + path.string()), "nan.clf", 2);
+}
+
+TEST(CliInfo, SkipMalformedCountsAndKeepsGoodLines) {
+  const auto path = WriteText("skip.clf", FlaserLine(181, 1.0) + FlaserLine(181, 1.25, "nan") +
+                                              FlaserLine(181, 1.5));
+  const PenaRun run = RunPena("info --skip-malformed " + path.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(std::regex_search(run.out, std::regex("skipped[^\\n]*1"))) << run.out;
+}
+
+TEST(CliInfo, TruncatedGzipNamesFileAndLine) {
+  const auto dir = FreshDir("cli_truncated");
+  const auto full = dir / "full.clf.gz";
+  gzFile gz = gzopen(full.c_str(), "wb");
+  ASSERT_NE(gz, nullptr);
+  for (int i = 0; i < 400; ++i) {
+    const std::string line = FlaserLine(181, 1.0 + 0.25 * i);
+    gzwrite(gz, line.data(), static_cast<unsigned>(line.size()));
+  }
+  gzclose(gz);
+  const std::string bytes = ReadBytes(full);
+  const auto cut = dir / "cut.clf.gz";
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  const PenaRun run = RunPena("info " + cut.string());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_TRUE(std::regex_search(run.err, std::regex("cut\\.clf\\.gz:[0-9]+:"))) << run.err;
+}
+
+TEST(CliInfo, MissingFileIsAnError) {
+  const PenaRun run = RunPena("info /nonexistent/pena.clf");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("/nonexistent/pena.clf"), std::string::npos) << run.err;
+}
+
+// The datasets README: raw odometry scores about 1.7 m on mit-csail (7.4 m intel, 0.55 m aces).
+TEST(CliEval, ReproducesRawOdometryFigureOnMitCsail) {
+  const auto dir = FreshDir("cli_eval_mit");
+  const auto tum = dir / "odometry.tum";
+  const PenaRun exported =
+      RunPena("export --log " + Dataset("freiburg/mit-csail.clf.gz").string() + " --tum " +
+              tum.string());
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  const PenaRun run = RunPena("eval --json --trajectory " + tum.string() + " --relations " +
+                              Dataset("freiburg/mit-csail.relations").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(
+      run.out, match, std::regex("\"translational_error_m\"[^}]*?\"mean\"\\s*:\\s*([0-9.eE+-]+)")))
+      << run.out;
+  const double mean_m = std::stod(match[1]);
+  EXPECT_GT(mean_m, 1.5);
+  EXPECT_LT(mean_m, 1.9);
+}
+
+}  // namespace
+}  // namespace pena::testing

@@ -1,0 +1,44 @@
+#include "run_pena.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace pena::testing {
+
+PenaRun RunPena(const std::string& args) {
+  const std::filesystem::path dir = ::testing::TempDir();
+  const auto out_path = dir / "pena_stdout.txt";
+  const auto err_path = dir / "pena_stderr.txt";
+  const std::string command = std::string(PENA_BINARY) + " " + args + " >" + out_path.string() +
+                              " 2>" + err_path.string();
+  const int status = std::system(command.c_str());
+  PenaRun run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = ReadBytes(out_path);
+  run.err = ReadBytes(err_path);
+  return run;
+}
+
+std::filesystem::path FreshDir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string ReadBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+std::filesystem::path Dataset(const std::string& relative) {
+  return std::filesystem::path(PENA_SHARED_DIR) / "datasets" / relative;
+}
+
+}  // namespace pena::testing

@@ -1,0 +1,28 @@
+#pragma once
+// Runs the pena binary as a user would and captures what it prints.
+
+#include <filesystem>
+#include <string>
+
+namespace pena::testing {
+
+// Exit status and output of one pena run.
+struct PenaRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs `pena <args>` (args are passed through a shell: quote paths with spaces).
+PenaRun RunPena(const std::string& args);
+
+// A fresh empty directory under the test temp dir.
+std::filesystem::path FreshDir(const std::string& name);
+
+// Whole file contents as bytes.
+std::string ReadBytes(const std::filesystem::path& path);
+
+// Path of a file in ../shared/datasets.
+std::filesystem::path Dataset(const std::string& relative);
+
+}  // namespace pena::testing

@@ -1,0 +1,193 @@
+// pena eval: scores an estimated trajectory against ground-truth relations (Kuemmerle et al. 2009)
+// and/or a truth trajectory. Metric definitions are in docs/evaluation.md.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include "commands.hpp"
+#include "pena/eval/relation_error.hpp"
+#include "pena/eval/trajectory_error.hpp"
+#include "pena/io/trajectory_io.hpp"
+
+namespace pena::cli {
+
+namespace {
+
+// What the user asked for; each reference given adds one section to the report.
+struct EvalArgs {
+  std::string trajectory;
+  std::string relations;
+  std::string truth;
+  bool align = false;
+  bool json = false;
+  double stamp_tolerance_s = eval::kDefaultStampTolerance_s;
+};
+
+// The results of every section that ran, for one report.
+struct EvalReport {
+  std::size_t poses = 0;
+  std::optional<eval::RelationErrorSummary> relations;
+  std::optional<eval::TrajectoryErrorSummary> truth;
+};
+
+std::string Fixed(double value, int decimals) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
+  return buffer;
+}
+
+std::string JsonString(const std::string& text) {
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      quoted += '\\';
+      quoted += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof(escaped), "\\u%04x", static_cast<unsigned>(c));
+      quoted += escaped;
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "\"";
+}
+
+// Full double precision: JSON is for scripts, which round for themselves.
+std::string JsonNumber(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
+  return buffer;
+}
+
+std::string JsonMeanStd(const eval::MeanStd& value) {
+  return "{\"mean\": " + JsonNumber(value.mean) + ", \"std\": " + JsonNumber(value.std) + "}";
+}
+
+void PrintRelationRow(const char* label, const eval::MeanStd& value, int decimals) {
+  std::printf("  %-22s %14s %14s\n", label, Fixed(value.mean, decimals).c_str(),
+              Fixed(value.std, decimals).c_str());
+}
+
+void PrintRelationTable(const EvalArgs& args, const eval::RelationErrorSummary& summary) {
+  std::printf("relations %s: %zu used, %zu skipped (a stamp not within %s ms of a pose)\n",
+              args.relations.c_str(), summary.relations_used, summary.relations_skipped,
+              Fixed(args.stamp_tolerance_s * 1e3, 3).c_str());
+  std::printf("  %-22s %14s %14s\n", "", "mean", "std");
+  PrintRelationRow("translation [m]", summary.translation_m, 4);
+  PrintRelationRow("translation^2 [m^2]", summary.translation_sq_m2, 4);
+  PrintRelationRow("rotation [deg]", summary.rotation_deg, 3);
+  PrintRelationRow("rotation^2 [deg^2]", summary.rotation_sq_deg2, 3);
+}
+
+void PrintTruthTable(const EvalArgs& args, const eval::TrajectoryErrorSummary& summary) {
+  std::printf("truth %s: %zu poses matched, %zu skipped (no truth within %s ms)\n",
+              args.truth.c_str(), summary.poses_matched, summary.poses_skipped,
+              Fixed(args.stamp_tolerance_s * 1e3, 3).c_str());
+  if (args.align) {
+    const geometry::Pose2& t = summary.truth_from_estimate;
+    std::printf("  aligned: truth_from_estimate x %s m, y %s m, theta %s deg\n",
+                Fixed(t.x_m, 3).c_str(), Fixed(t.y_m, 3).c_str(),
+                Fixed(t.theta_rad * 180.0 / std::numbers::pi, 3).c_str());
+  }
+  std::printf("  %-28s %12s\n", "translation RMSE [m]",
+              Fixed(summary.translation_rmse_m, 4).c_str());
+  std::printf("  %-28s %12s\n", "heading RMSE [deg]", Fixed(summary.heading_rmse_deg, 3).c_str());
+  std::printf("  %-28s %12s\n", "max translation error [m]",
+              Fixed(summary.max_translation_error_m, 4).c_str());
+  std::printf("  %-28s %12s\n", "final position error [m]",
+              Fixed(summary.final_position_error_m, 4).c_str());
+  std::printf("  %-28s %12s\n", "truth path length [m]",
+              Fixed(summary.truth_path_length_m, 3).c_str());
+  std::printf("  %-28s %12s\n", "final error [% of path]",
+              Fixed(summary.final_error_percent_of_path, 3).c_str());
+}
+
+std::string RelationJson(const EvalArgs& args, const eval::RelationErrorSummary& summary) {
+  return "{\"file\": " + JsonString(args.relations) +
+         ", \"used\": " + std::to_string(summary.relations_used) +
+         ", \"skipped\": " + std::to_string(summary.relations_skipped) +
+         ", \"translational_error_m\": " + JsonMeanStd(summary.translation_m) +
+         ", \"translational_error_sq_m2\": " + JsonMeanStd(summary.translation_sq_m2) +
+         ", \"rotational_error_deg\": " + JsonMeanStd(summary.rotation_deg) +
+         ", \"rotational_error_sq_deg2\": " + JsonMeanStd(summary.rotation_sq_deg2) + "}";
+}
+
+std::string TruthJson(const EvalArgs& args, const eval::TrajectoryErrorSummary& summary) {
+  const geometry::Pose2& t = summary.truth_from_estimate;
+  return "{\"file\": " + JsonString(args.truth) +
+         ", \"matched\": " + std::to_string(summary.poses_matched) +
+         ", \"skipped\": " + std::to_string(summary.poses_skipped) +
+         ", \"aligned\": " + (args.align ? "true" : "false") +
+         ", \"truth_from_estimate\": {\"x_m\": " + JsonNumber(t.x_m) +
+         ", \"y_m\": " + JsonNumber(t.y_m) + ", \"theta_rad\": " + JsonNumber(t.theta_rad) + "}" +
+         ", \"translation_rmse_m\": " + JsonNumber(summary.translation_rmse_m) +
+         ", \"heading_rmse_deg\": " + JsonNumber(summary.heading_rmse_deg) +
+         ", \"max_translation_error_m\": " + JsonNumber(summary.max_translation_error_m) +
+         ", \"final_position_error_m\": " + JsonNumber(summary.final_position_error_m) +
+         ", \"truth_path_length_m\": " + JsonNumber(summary.truth_path_length_m) +
+         ", \"final_error_percent_of_path\": " + JsonNumber(summary.final_error_percent_of_path) +
+         "}";
+}
+
+void PrintJson(const EvalArgs& args, const EvalReport& report) {
+  std::string json = "{\"trajectory\": " + JsonString(args.trajectory) +
+                     ", \"poses\": " + std::to_string(report.poses) +
+                     ", \"stamp_tolerance_s\": " + JsonNumber(args.stamp_tolerance_s);
+  if (report.relations) json += ", \"relations\": " + RelationJson(args, *report.relations);
+  if (report.truth) json += ", \"truth\": " + TruthJson(args, *report.truth);
+  std::cout << json << "}\n";
+}
+
+// Dispatches on the references given; a later --lines/--walls map comparison adds a section here.
+void RunEval(const EvalArgs& args) {
+  if (args.relations.empty() && args.truth.empty()) {
+    throw CLI::RequiredError("--relations R or --truth T (or both)");
+  }
+  const geometry::Trajectory estimate = io::ReadTum(args.trajectory);
+  EvalReport report;
+  report.poses = estimate.size();
+  if (!args.relations.empty()) {
+    report.relations = eval::EvaluateRelations(estimate, io::ReadRelations(args.relations),
+                                               {.stamp_tolerance_s = args.stamp_tolerance_s});
+  }
+  if (!args.truth.empty()) {
+    report.truth = eval::EvaluateAgainstTruth(
+        estimate, io::ReadTum(args.truth),
+        {.stamp_tolerance_s = args.stamp_tolerance_s, .align = args.align});
+  }
+  if (args.json) return PrintJson(args, report);
+  std::printf("trajectory %s: %zu poses\n", args.trajectory.c_str(), report.poses);
+  if (report.relations) PrintRelationTable(args, *report.relations);
+  if (report.truth) PrintTruthTable(args, *report.truth);
+}
+
+}  // namespace
+
+void AddEvalCommand(CLI::App& app) {
+  auto args = std::make_shared<EvalArgs>();
+  CLI::App* command = app.add_subcommand(
+      "eval", "Score a trajectory against ground-truth relations and/or a truth trajectory");
+  command->add_option("--trajectory", args->trajectory, "Estimated trajectory (TUM text)")
+      ->required();
+  command->add_option("--relations", args->relations,
+                      "Ground-truth relations (Freiburg .relations): Kuemmerle relation errors");
+  CLI::Option* truth = command->add_option(
+      "--truth", args->truth, "Truth trajectory (TUM text): absolute errors, final-position %");
+  command
+      ->add_flag("--align", args->align,
+                 "Rigidly align the estimate to the truth (least squares) before comparing")
+      ->needs(truth);
+  command->add_flag("--json", args->json, "Print one JSON object instead of tables");
+  command
+      ->add_option("--stamp-tolerance", args->stamp_tolerance_s,
+                   "Seconds within which two stamps are the same instant")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  command->callback([args] { RunEval(*args); });
+}
+
+}  // namespace pena::cli

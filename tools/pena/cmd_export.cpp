@@ -1,0 +1,123 @@
+// pena export --log LOG [--carmen OUT] [--csm OUT] [--tum OUT [--pose odometry|logged]]:
+// converts a log's scans (and odometry) to the text formats other tools read.
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "commands.hpp"
+#include "pena/geometry/trajectory.hpp"
+#include "pena/io/carmen.hpp"
+#include "pena/io/log_source.hpp"
+#include "pena/io/trajectory_io.hpp"
+
+namespace pena::cli {
+namespace {
+
+struct ExportOptions {
+  std::string log;
+  std::string carmen;
+  std::string csm;
+  std::string tum;
+  std::string pose = "odometry";
+  io::ReadOptions read;
+};
+
+struct ExportCounts {
+  std::size_t scans = 0;
+  std::size_t odometry = 0;
+  std::size_t not_representable = 0;  // gyro, compass, stride, ground truth: no CARMEN line
+  std::size_t tum_left_out = 0;       // scans without the pose, or not after the previous stamp
+};
+
+// The scan's pose for the TUM output, if it has the kind asked for.
+std::optional<geometry::Pose2> TumPose(const sensors::LaserScan& scan, const std::string& kind) {
+  return kind == "logged" ? scan.logged_pose : scan.odometry_pose;
+}
+
+// Adds the scan's pose to the trajectory; TUM needs increasing stamps, so later duplicates and
+// small steps back (radish logs) are left out and counted.
+void AppendTum(const sensors::LaserScan& scan, const std::string& kind,
+               geometry::Trajectory& trajectory, ExportCounts& counts) {
+  const std::optional<geometry::Pose2> pose = TumPose(scan, kind);
+  if (!pose || (!trajectory.empty() && !(scan.stamp_s > trajectory.back().stamp_s))) {
+    ++counts.tum_left_out;
+    return;
+  }
+  trajectory.push_back({scan.stamp_s, *pose});
+}
+
+void RunExport(const ExportOptions& options) {
+  if (options.carmen.empty() && options.csm.empty() && options.tum.empty()) {
+    throw CLI::ValidationError("export", "give at least one output: --carmen, --csm or --tum");
+  }
+  const std::unique_ptr<io::LogSource> source = io::OpenLog(options.log, options.read);
+  std::unique_ptr<io::CarmenWriter> carmen;
+  std::unique_ptr<io::CsmJsonWriter> csm;
+  if (!options.carmen.empty()) carmen = std::make_unique<io::CarmenWriter>(options.carmen);
+  if (!options.csm.empty()) csm = std::make_unique<io::CsmJsonWriter>(options.csm);
+  geometry::Trajectory trajectory;
+  ExportCounts counts;
+  while (std::optional<sensors::SensorRecord> record = source->Next()) {
+    if (const auto* scan = std::get_if<sensors::LaserScan>(&*record)) {
+      ++counts.scans;
+      if (carmen) carmen->Write(*scan);
+      if (csm) csm->Write(*scan);
+      if (!options.tum.empty()) AppendTum(*scan, options.pose, trajectory, counts);
+    } else if (const auto* odometry = std::get_if<sensors::WheelOdometry>(&*record)) {
+      ++counts.odometry;
+      if (carmen) carmen->Write(*odometry);
+    } else {
+      ++counts.not_representable;
+    }
+  }
+  if (!options.tum.empty()) {
+    if (trajectory.empty() && counts.scans > 0) {
+      throw std::runtime_error(options.log + ": no scan has a " + options.pose +
+                               " pose for --tum (try --pose " +
+                               (options.pose == "logged" ? "odometry" : "logged") + ")");
+    }
+    io::WriteTum(options.tum, trajectory);
+  }
+  std::cout << "exported " << counts.scans << " scans, " << counts.odometry << " odometry records";
+  if (!options.tum.empty()) std::cout << ", " << trajectory.size() << " " << options.pose << " poses";
+  std::cout << " from " << options.log << '\n';
+  if (counts.not_representable > 0) {
+    std::cout << "left out " << counts.not_representable
+              << " records with no text form (gyro, compass, stride, ground truth)\n";
+  }
+  if (counts.tum_left_out > 0) {
+    std::cout << "left out of the TUM file " << counts.tum_left_out
+              << " scans without that pose or not after the previous stamp\n";
+  }
+  if (source->skipped() > 0) std::cout << "skipped " << source->skipped() << " malformed lines\n";
+}
+
+}  // namespace
+
+void AddExportCommand(CLI::App& app) {
+  auto options = std::make_shared<ExportOptions>();
+  CLI::App* command = app.add_subcommand(
+      "export", "Convert a log's scans to CARMEN, CSM JSON (sm1/sm2) and/or a TUM trajectory");
+  command->add_option("--log", options->log, "Input log: CARMEN (plain or gzip) or PeNa mission log")
+      ->required();
+  command->add_option("--carmen", options->carmen, "Write FLASER/ODOM lines to this CARMEN file");
+  command->add_option("--csm", options->csm, "Write Censi CSM laser_data JSON, one scan per line");
+  CLI::Option* tum = command->add_option(
+      "--tum", options->tum, "Write the scans' poses at the scan stamps as a TUM trajectory");
+  command->add_option("--pose", options->pose, "Pose written to --tum: odometry or logged")
+      ->check(CLI::IsMember({"odometry", "logged"}))
+      ->needs(tum)
+      ->capture_default_str();
+  command->add_flag("--skip-malformed", options->read.skip_malformed,
+                    "Skip malformed lines (and count them) instead of stopping at the first");
+  command->add_option("--max-range", options->read.carmen_max_range_m,
+                      "CARMEN FLASER maximum range, metres: ranges at or above it are no-returns")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  // Errors propagate: main prints them as one "pena: error: file:line: what" line.
+  command->callback([options] { RunExport(*options); });
+}
+
+}  // namespace pena::cli

@@ -1,0 +1,13 @@
+#pragma once
+// Each subcommand registers its options and its action on the top-level app.
+
+#include <CLI/CLI.hpp>
+
+namespace pena::cli {
+
+void AddInfoCommand(CLI::App& app);      // pena info FILE
+void AddExportCommand(CLI::App& app);    // pena export --log LOG --carmen|--csm OUT
+void AddEvalCommand(CLI::App& app);      // pena eval --trajectory T (--relations R | --truth T)
+void AddSimulateCommand(CLI::App& app);  // pena simulate --scenario NAME|FILE --seed N --out DIR
+
+}  // namespace pena::cli
