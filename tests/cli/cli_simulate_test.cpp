@@ -37,7 +37,8 @@ TEST(CliSimulate, OfficeWritesTheDocumentedLayout) {
   const auto dir = FreshDir("sim_office");
   const PenaRun run = RunPena("simulate --scenario office --seed 3 --out " + dir.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  for (const char* file : {"floorplan.csv", "observed.csv", "apriori.csv", "mission.png"}) {
+  for (const char* file :
+       {"floorplan.csv", "floorplan.svg", "observed.csv", "apriori.csv", "mission.png"}) {
     EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
   }
   bool found_entity = false;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -10,9 +11,12 @@
 namespace pena::testing {
 
 PenaRun RunPena(const std::string& args) {
+  // CTest runs test cases as parallel processes sharing TempDir(): names must be unique.
+  static int run_count = 0;
+  const std::string tag = std::to_string(getpid()) + "_" + std::to_string(++run_count);
   const std::filesystem::path dir = ::testing::TempDir();
-  const auto out_path = dir / "pena_stdout.txt";
-  const auto err_path = dir / "pena_stderr.txt";
+  const auto out_path = dir / ("pena_stdout_" + tag + ".txt");
+  const auto err_path = dir / ("pena_stderr_" + tag + ".txt");
   const std::string command = std::string(PENA_BINARY) + " " + args + " >" + out_path.string() +
                               " 2>" + err_path.string();
   const int status = std::system(command.c_str());
@@ -20,6 +24,8 @@ PenaRun RunPena(const std::string& args) {
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   run.out = ReadBytes(out_path);
   run.err = ReadBytes(err_path);
+  std::filesystem::remove(out_path);
+  std::filesystem::remove(err_path);
   return run;
 }
 

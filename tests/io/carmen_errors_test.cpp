@@ -131,6 +131,20 @@ TEST(CarmenErrors, UnrecognisedFormatIsRefused) {
   EXPECT_NE(std::string(error.what()).find("format not recognised"), std::string::npos);
 }
 
+TEST(CarmenErrors, MarkdownStartingWithHashIsRefused) {
+  // '#' starts a CARMEN comment, so the first non-comment line decides.
+  const auto path = WriteText("README.md", "# A title\n\nSome prose about the project.\n");
+  const InputError error = ReadExpectingError(path);
+  EXPECT_EQ(error.line(), 0u);
+  EXPECT_NE(std::string(error.what()).find("format not recognised"), std::string::npos);
+}
+
+TEST(CarmenErrors, CommentedLogIsAccepted) {
+  const auto path = WriteText("commented.clf", "# CARMEN Logfile\n# file format is ...\n" +
+                                                   FlaserLine(181, "3", "1"));
+  EXPECT_EQ(ReadAll(*OpenLog(path)).size(), 1u);
+}
+
 TEST(CarmenErrors, InvalidMaxRangeOptionIsRefused) {
   const auto path = WriteText("ok.clf", FlaserLine(181, "3", "1"));
   ReadOptions options;

@@ -67,7 +67,8 @@ TEST(MissionWriter, SameSeedWritesIdenticalBytesAndAnotherSeedDoesNot) {
   WriteAll(scenario, 5, b);
   WriteAll(scenario, 6, c);
   const auto files = FilesUnder(a);
-  ASSERT_EQ(files.size(), 10u);  // floorplan, observed, apriori, png + 2 x (log, tum, relations)
+  // floorplan .csv and .svg, observed, apriori, png + 2 x (log, tum, relations)
+  ASSERT_EQ(files.size(), 11u);
   ASSERT_EQ(files, FilesUnder(b));
   for (const fs::path& file : files) {
     EXPECT_TRUE(Bytes(a / file) == Bytes(b / file)) << file;

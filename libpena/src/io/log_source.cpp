@@ -1,5 +1,6 @@
 #include "pena/io/log_source.hpp"
 
+#include <algorithm>
 #include <string_view>
 #include <system_error>
 
@@ -13,23 +14,34 @@ namespace {
 
 constexpr std::size_t kSniffBytes = 4096;
 
-// A CARMEN log is text whose lines start with '#' or an upper-case message name (FLASER, PARAM,
-// ...). Looking at the first line is enough to refuse binaries, CSV and JSON with a clear error.
+// True if the line starts with an upper-case message name (FLASER, PARAM, ROBOTLASER1, ...).
+bool StartsWithMessageName(std::string_view line) {
+  std::size_t i = 0;
+  while (i < line.size() && ((line[i] >= 'A' && line[i] <= 'Z') ||
+                             (line[i] >= '0' && line[i] <= '9') || line[i] == '_')) {
+    ++i;
+  }
+  const bool starts_upper = !line.empty() && line.front() >= 'A' && line.front() <= 'Z';
+  return starts_upper && (i == line.size() || line[i] == ' ' || line[i] == '\t' ||
+                          line[i] == '\r' || line[i] == '\n');
+}
+
+// A CARMEN log is text whose first non-comment line starts with an upper-case message name.
+// Looking that far is enough to refuse binaries, CSV, JSON and Markdown with a clear error.
 bool LooksLikeCarmen(const std::filesystem::path& path) {
   const std::string head = detail::ReadHead(path, kSniffBytes);
   if (head.find('\0') != std::string::npos) return false;
-  const std::size_t start = head.find_first_not_of(" \t\r\n");
-  if (start == std::string::npos) return true;  // empty: an empty log, not an error
-  const std::string_view line = std::string_view(head).substr(start);
-  if (line.front() == '#') return true;
-  std::size_t i = 0;
-  while (i < line.size() && ((line[i] >= 'A' && line[i] <= 'Z') || (line[i] >= '0' && line[i] <= '9') ||
-                              line[i] == '_')) {
-    ++i;
+  std::size_t start = 0;
+  while (start < head.size()) {
+    const std::size_t end = std::min(head.find('\n', start), head.size());
+    const std::string_view line = std::string_view(head).substr(start, end - start);
+    const std::size_t text = line.find_first_not_of(" \t\r");
+    if (text != std::string_view::npos && line[text] != '#') {
+      return StartsWithMessageName(line.substr(text));
+    }
+    start = end + 1;
   }
-  const bool starts_upper = line.front() >= 'A' && line.front() <= 'Z';
-  return starts_upper && (i == line.size() || line[i] == ' ' || line[i] == '\t' ||
-                          line[i] == '\r' || line[i] == '\n');
+  return true;  // empty or only comments (within the sniffed head): an empty log, not an error
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "pena/io/line_csv.hpp"
+#include "pena/io/line_svg.hpp"
 #include "pena/io/mission_log.hpp"
 #include "pena/io/trajectory_io.hpp"
 
@@ -55,6 +56,16 @@ EntityFiles WriteEntity(const EntityRecording& entity, const std::string& missio
   return files;
 }
 
+// The plan for people: true walls, the parts the lasers saw, and the a priori plan if any.
+std::vector<io::SvgLayer> PlanLayers(const Scenario& scenario, const SimulationResult& result) {
+  std::vector<io::SvgLayer> layers{{"true walls", "#9e9e9e", 0.12, scenario.walls}};
+  io::SvgLayer observed{"observed by the lasers", "#1565c0", 0.06, {}};
+  for (const ObservedSegment& segment : result.observed) observed.segments.push_back(segment.segment);
+  layers.push_back(std::move(observed));
+  if (scenario.apriori) layers.push_back({"a priori plan", "#ef6c00", 0.04, *scenario.apriori});
+  return layers;
+}
+
 }  // namespace
 
 MissionFiles WriteMission(const Scenario& scenario, const SimulationResult& result,
@@ -75,6 +86,8 @@ MissionFiles WriteMission(const Scenario& scenario, const SimulationResult& resu
     files.apriori = dir / "apriori.csv";
     io::WriteLineCsv(*files.apriori, Rows(*scenario.apriori));
   }
+  files.floorplan_svg = dir / "floorplan.svg";
+  io::WriteLineSvg(files.floorplan_svg, PlanLayers(scenario, result));
   for (const EntityRecording& entity : result.entities) {
     files.entities.push_back(
         WriteEntity(entity, result.mission, dir / entity.id, producer, relations));

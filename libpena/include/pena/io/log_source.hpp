@@ -21,7 +21,7 @@ struct ReadOptions {
   // return exceeds 42.4 m) except orebro (codes 32.76: use 32.7); see docs/io-formats.md.
   double carmen_max_range_m = 50.0;
   // CARMEN FLASER lines with 180 beams: true spreads them over 180 deg (180/179 deg steps),
-  // false uses 1 deg steps from -90 deg. See docs/formats.md for which fits the data.
+  // false uses 1 deg steps from -90 deg. docs/evaluation.md shows 1 deg fits.
   bool carmen_180_beams_span_180_deg = false;
 };
 

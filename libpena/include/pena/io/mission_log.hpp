@@ -1,6 +1,6 @@
 #pragma once
 // The native PeNa mission log: a versioned, streaming, compact Protobuf record stream
-// (schema idl/pena_log.proto, layout in docs/formats.md). One file per entity.
+// (schema idl/pena_log.proto, layout in docs/mission-log.md). One file per entity.
 
 #include <cstdint>
 #include <filesystem>

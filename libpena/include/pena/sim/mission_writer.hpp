@@ -1,6 +1,6 @@
 #pragma once
 // Writes a simulated mission as a directory (layout in docs/simulator.md):
-//   DIR/floorplan.csv, DIR/observed.csv, DIR/apriori.csv (if the scenario has a plan),
+//   DIR/floorplan.csv, DIR/floorplan.svg, DIR/observed.csv, DIR/apriori.csv (if the scenario has a plan),
 //   DIR/<entity>/sensors.penalog, DIR/<entity>/truth.tum, DIR/<entity>/truth.relations.
 // The picture DIR/mission.png is rendered by RenderMission (mission_picture.hpp) and encoded by
 // the caller, so libpena stays free of image codecs.
@@ -28,6 +28,7 @@ struct EntityFiles {
 struct MissionFiles {
   std::filesystem::path floorplan;
   std::filesystem::path observed;
+  std::filesystem::path floorplan_svg;  // true walls, observed parts, a priori plan
   std::optional<std::filesystem::path> apriori;
   std::vector<EntityFiles> entities;
 };
