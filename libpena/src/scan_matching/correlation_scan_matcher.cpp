@@ -1,0 +1,111 @@
+#include "pena/scan_matching/correlation_scan_matcher.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "branch_and_bound.hpp"
+#include "least_squares_refiner.hpp"
+#include "nearest_neighbours.hpp"
+#include "pena/scan_matching/hit_grid.hpp"
+#include "window_grid.hpp"
+
+namespace pena::scan_matching {
+namespace {
+
+void Require(bool ok, const std::string& field, const std::string& unit, double value) {
+  if (!ok) {
+    throw std::invalid_argument("scan_matcher." + field + " must be > 0" + unit + ", got " +
+                                std::to_string(value));
+  }
+}
+
+}  // namespace
+
+struct CorrelationScanMatcher::Impl {
+  HitGrid hits;
+  internal::NearestNeighbours neighbours;
+};
+
+void ValidateWindow(const SearchWindow& window, const CorrelationMatcherOptions& options) {
+  Require(window.size_x_m >= 0.0, "window.size_x_m", " m (or 0)", window.size_x_m);
+  Require(window.size_y_m >= 0.0, "window.size_y_m", " m (or 0)", window.size_y_m);
+  Require(window.size_theta_rad >= 0.0, "window.size_theta_rad", " rad (or 0)",
+          window.size_theta_rad);
+  Require(window.step_xy_m > 0.0, "window.step_xy_m", " m", window.step_xy_m);
+  Require(window.step_theta_rad > 0.0, "window.step_theta_rad", " rad", window.step_theta_rad);
+  const double cells = window.step_xy_m / options.grid_resolution_m;
+  if (std::abs(cells - std::round(cells)) > 1e-6 || std::round(cells) < 1.0) {
+    throw std::invalid_argument("scan_matcher.window.step_xy_m (" +
+                                std::to_string(window.step_xy_m) +
+                                " m) must be a whole multiple of grid_resolution_m (" +
+                                std::to_string(options.grid_resolution_m) + " m)");
+  }
+}
+
+CorrelationScanMatcher::CorrelationScanMatcher(const CorrelationMatcherOptions& options,
+                                               const Points2& reference)
+    : options_(options) {
+  Require(options.threshold_m > 0.0, "threshold_m", " m", options.threshold_m);
+  Require(options.grid_resolution_m > 0.0, "grid_resolution_m", " m", options.grid_resolution_m);
+  Require(options.refine_iterations >= 0, "refine_iterations", " (or 0)",
+          options.refine_iterations);
+  impl_ = std::make_unique<Impl>(Impl{HitGrid(reference, options.grid_resolution_m,
+                                              options.threshold_m),
+                                      internal::NearestNeighbours(reference)});
+}
+
+CorrelationScanMatcher::~CorrelationScanMatcher() = default;
+CorrelationScanMatcher::CorrelationScanMatcher(CorrelationScanMatcher&&) noexcept = default;
+CorrelationScanMatcher& CorrelationScanMatcher::operator=(CorrelationScanMatcher&&) noexcept =
+    default;
+
+MatchResult CorrelationScanMatcher::MatchExhaustive(const Points2& scan,
+                                                    const geometry::Pose2& reference_from_prior,
+                                                    const SearchWindow& window) const {
+  ValidateWindow(window, options_);
+  const internal::WindowGrid grid = internal::MakeWindowGrid(window, options_.grid_resolution_m);
+  internal::Candidate best;
+  long scored = 0;
+  for (int angle = 0; angle < grid.num_angles; ++angle) {
+    const auto cells = internal::DiscretizeScan(impl_->hits, scan, reference_from_prior, grid, angle);
+    for (int x = 0; x < grid.num_x; ++x) {
+      for (int y = 0; y < grid.num_y; ++y) {
+        int hits = 0;
+        for (const auto& cell : cells) {
+          hits += impl_->hits.At(cell.x() + x * grid.step_cells, cell.y() + y * grid.step_cells);
+        }
+        const internal::Candidate candidate{angle, x, y, hits, internal::DistanceSq(grid, angle, x, y)};
+        if (internal::Better(candidate, best)) best = candidate;
+        ++scored;
+      }
+    }
+  }
+  return internal::Finish(impl_->neighbours, options_, scan, grid, reference_from_prior, best,
+                          scored);
+}
+
+MatchResult CorrelationScanMatcher::MatchBranchAndBound(const Points2& scan,
+                                                        const geometry::Pose2& reference_from_prior,
+                                                        const SearchWindow& window) const {
+  ValidateWindow(window, options_);
+  const internal::WindowGrid grid = internal::MakeWindowGrid(window, options_.grid_resolution_m);
+  long scored = 0;
+  const internal::Candidate best =
+      internal::BranchAndBound(impl_->hits, scan, reference_from_prior, grid, scored);
+  return internal::Finish(impl_->neighbours, options_, scan, grid, reference_from_prior, best,
+                          scored);
+}
+
+double CorrelationScanMatcher::Score(const Points2& scan,
+                                     const geometry::Pose2& reference_from_scan) const {
+  if (scan.empty()) return 0.0;
+  int hits = 0;
+  for (const auto& point : scan) {
+    const Eigen::Vector2i cell = impl_->hits.CellOf(geometry::TransformPoint(reference_from_scan, point));
+    hits += impl_->hits.At(cell.x(), cell.y());
+  }
+  return static_cast<double>(hits) / static_cast<double>(scan.size());
+}
+
+}  // namespace pena::scan_matching

@@ -1,0 +1,27 @@
+#pragma once
+// Step 5 of the paper's algorithm: least squares on the nearest-neighbour pairs of the best pose.
+
+#include "nearest_neighbours.hpp"
+#include "pena/scan_matching/correlation_scan_matcher.hpp"
+#include "window_grid.hpp"
+
+namespace pena::scan_matching::internal {
+
+// A refined pose and the information matrix J^T J of its point-to-line residuals (x, y, theta).
+struct Refinement {
+  geometry::Pose2 reference_from_scan;
+  Eigen::Matrix3d information;
+};
+
+// Gauss-Newton on point-to-line distances to the reference (normals from its neighbourhood),
+// re-pairing within the threshold each round. Keeps the start pose with too few pairs.
+Refinement RefineLeastSquares(const NearestNeighbours& neighbours,
+                                   const CorrelationMatcherOptions& options, const Points2& scan,
+                                   const geometry::Pose2& reference_from_scan);
+
+// Builds the MatchResult of a search's best candidate, refinement included.
+MatchResult Finish(const NearestNeighbours& neighbours, const CorrelationMatcherOptions& options,
+                   const Points2& scan, const WindowGrid& grid,
+                   const geometry::Pose2& reference_from_prior, const Candidate& best, long scored);
+
+}  // namespace pena::scan_matching::internal

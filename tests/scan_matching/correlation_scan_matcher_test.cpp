@@ -1,0 +1,106 @@
+#include "pena/scan_matching/correlation_scan_matcher.hpp"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+#include <random>
+
+#include "synthetic_room.hpp"
+
+namespace pena::scan_matching {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+struct Pair {
+  Points2 reference;
+  Points2 scan;
+  geometry::Pose2 reference_from_scan;  // the truth
+};
+
+// Two scans of the synthetic room: the reference from `a`, the scan from `b`.
+Pair MakePair(const geometry::Pose2& world_from_a, const geometry::Pose2& world_from_b,
+              double noise_m, unsigned seed) {
+  std::mt19937 rng(seed);
+  const auto walls = testing::SyntheticRoom();
+  return {testing::ScanRoom(walls, world_from_a, noise_m, rng),
+          testing::ScanRoom(walls, world_from_b, noise_m, rng),
+          geometry::Between(world_from_a, world_from_b)};
+}
+
+TEST(CorrelationScanMatcher, RecoversKnownMotionWithPaperWindow) {
+  const Pair pair = MakePair({1.5, 2.5, 0.0}, {1.62, 2.44, 1.2 * kDeg}, 0.01, 1);
+  const CorrelationScanMatcher matcher({}, pair.reference);
+  // Prior: dead reckoning without the true motion, off by 12 cm, 6 cm and 1.2 deg.
+  const MatchResult result = matcher.MatchExhaustive(pair.scan, {0.0, 0.0, 0.0}, SearchWindow{});
+  ASSERT_TRUE(result.converged);
+  EXPECT_GT(result.score, 0.9);
+  EXPECT_NEAR(result.reference_from_scan.x_m, pair.reference_from_scan.x_m, 0.01);
+  EXPECT_NEAR(result.reference_from_scan.y_m, pair.reference_from_scan.y_m, 0.01);
+  EXPECT_NEAR(result.reference_from_scan.theta_rad, pair.reference_from_scan.theta_rad, 0.2 * kDeg);
+}
+
+TEST(CorrelationScanMatcher, RefinementBeatsTheGridResolution) {
+  // True motion between grid poses: the refined pose is much closer than the 6 cm grid.
+  const Pair pair = MakePair({1.5, 2.5, 0.0}, {1.53, 2.47, 0.3 * kDeg}, 0.0, 2);
+  const CorrelationScanMatcher matcher({}, pair.reference);
+  const MatchResult result = matcher.MatchExhaustive(pair.scan, {0.0, 0.0, 0.0}, SearchWindow{});
+  EXPECT_NEAR(result.reference_from_scan.x_m, 0.03, 0.005);
+  EXPECT_NEAR(result.reference_from_scan.y_m, -0.03, 0.005);
+  EXPECT_NEAR(result.reference_from_scan.theta_rad, 0.3 * kDeg, 0.05 * kDeg);
+}
+
+// Branch and bound must return exactly the exhaustive search's grid pose and score.
+void ExpectSameAsExhaustive(const SearchWindow& window, const geometry::Pose2& prior,
+                            unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> x(1.0, 7.0), y(1.0, 4.0), theta(-0.6, 0.6);
+  const geometry::Pose2 a{x(rng), y(rng), theta(rng)};
+  const geometry::Pose2 b{a.x_m + 0.2, a.y_m - 0.1, a.theta_rad + 0.2};
+  const Pair pair = MakePair(a, b, 0.01, seed);
+  const CorrelationScanMatcher matcher({}, pair.reference);
+  const MatchResult exhaustive = matcher.MatchExhaustive(pair.scan, prior, window);
+  const MatchResult fast = matcher.MatchBranchAndBound(pair.scan, prior, window);
+  EXPECT_EQ(fast.hits, exhaustive.hits);
+  EXPECT_DOUBLE_EQ(fast.grid_pose.x_m, exhaustive.grid_pose.x_m);
+  EXPECT_DOUBLE_EQ(fast.grid_pose.y_m, exhaustive.grid_pose.y_m);
+  EXPECT_DOUBLE_EQ(fast.grid_pose.theta_rad, exhaustive.grid_pose.theta_rad);
+  EXPECT_LT(fast.candidates_scored, exhaustive.candidates_scored);
+}
+
+TEST(CorrelationScanMatcher, BranchAndBoundAgreesWithExhaustiveOnPaperWindow) {
+  for (unsigned seed = 1; seed <= 5; ++seed) ExpectSameAsExhaustive(SearchWindow{}, {0.15, -0.05, 0.19}, seed);
+}
+
+TEST(CorrelationScanMatcher, BranchAndBoundAgreesWithExhaustiveOnNoGyroWindow) {
+  // The paper's infeasible window without a gyro: 80 cm x 60 cm x 80 deg at 2 cm and 0.5 deg.
+  const SearchWindow wide{0.80, 0.60, 80.0 * kDeg, 0.02, 0.5 * kDeg};
+  for (unsigned seed = 11; seed <= 13; ++seed) ExpectSameAsExhaustive(wide, {0.0, 0.0, 0.0}, seed);
+}
+
+TEST(CorrelationScanMatcher, EmptyScanIsNotConverged) {
+  const Pair pair = MakePair({1.5, 2.5, 0.0}, {1.6, 2.5, 0.0}, 0.0, 3);
+  const CorrelationScanMatcher matcher({}, pair.reference);
+  const MatchResult result = matcher.MatchBranchAndBound({}, {0.0, 0.0, 0.0}, SearchWindow{});
+  EXPECT_FALSE(result.converged);
+  EXPECT_EQ(result.points, 0);
+}
+
+TEST(CorrelationScanMatcher, StepThatIsNotWholeCellsIsRejectedWithFieldName) {
+  const CorrelationScanMatcher matcher({}, {{1.0, 0.0}});
+  SearchWindow window;
+  window.step_xy_m = 0.05;  // 2.5 cells of 2 cm
+  EXPECT_THROW(
+      {
+        try {
+          matcher.MatchExhaustive({{1.0, 0.0}}, {}, window);
+        } catch (const std::invalid_argument& error) {
+          EXPECT_NE(std::string(error.what()).find("step_xy_m"), std::string::npos);
+          throw;
+        }
+      },
+      std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pena::scan_matching
