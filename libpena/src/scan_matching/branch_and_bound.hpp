@@ -5,13 +5,18 @@
 // land on (precomputed max-grids, one per h). Bounds never underestimate, so pruning keeps the
 // exact optimum of the exhaustive search; ties are broken by the same order (window_grid.hpp).
 
+#include "max_grids.hpp"
 #include "pena/scan_matching/hit_grid.hpp"
 #include "window_grid.hpp"
 
 namespace pena::scan_matching::internal {
 
+// The quadtree depth the window needs: 2^TopLevel covers the larger xy candidate count.
+int TopLevel(const WindowGrid& grid);
+
 // The best candidate of the window; `scored` counts the nodes whose bound or score was computed.
-Candidate BranchAndBound(const HitGrid& hits, const Points2& scan,
+// `max_grids` must have been built for grid.step_cells with at least TopLevel(grid) + 1 levels.
+Candidate BranchAndBound(const HitGrid& hits, const MaxGrids& max_grids, const Points2& scan,
                          const geometry::Pose2& reference_from_prior, const WindowGrid& grid,
                          long& scored);
 

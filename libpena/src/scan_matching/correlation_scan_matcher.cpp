@@ -1,6 +1,7 @@
 #include "pena/scan_matching/correlation_scan_matcher.hpp"
 
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -25,6 +26,18 @@ void Require(bool ok, const std::string& field, const std::string& unit, double 
 struct CorrelationScanMatcher::Impl {
   HitGrid hits;
   internal::NearestNeighbours neighbours;
+  // Max-grids by step (in cells), built on first use and kept for the reference's lifetime:
+  // building them costs more than a search. This makes matching not thread-safe.
+  std::map<int, std::unique_ptr<internal::MaxGrids>> max_grids;
+
+  const internal::MaxGrids& MaxGridsFor(const internal::WindowGrid& grid) {
+    auto& slot = max_grids[grid.step_cells];
+    const int levels = internal::TopLevel(grid) + 1;
+    if (!slot || slot->levels() < levels) {
+      slot = std::make_unique<internal::MaxGrids>(hits, grid.step_cells, 1 << (levels - 1));
+    }
+    return *slot;
+  }
 };
 
 void ValidateWindow(const SearchWindow& window, const CorrelationMatcherOptions& options) {
@@ -51,8 +64,8 @@ CorrelationScanMatcher::CorrelationScanMatcher(const CorrelationMatcherOptions& 
   Require(options.refine_iterations >= 0, "refine_iterations", " (or 0)",
           options.refine_iterations);
   impl_ = std::make_unique<Impl>(Impl{HitGrid(reference, options.grid_resolution_m,
-                                              options.threshold_m),
-                                      internal::NearestNeighbours(reference)});
+                                              options.threshold_m, options.graded),
+                                      internal::NearestNeighbours(reference), {}});
 }
 
 CorrelationScanMatcher::~CorrelationScanMatcher() = default;
@@ -71,7 +84,7 @@ MatchResult CorrelationScanMatcher::MatchExhaustive(const Points2& scan,
     const auto cells = internal::DiscretizeScan(impl_->hits, scan, reference_from_prior, grid, angle);
     for (int x = 0; x < grid.num_x; ++x) {
       for (int y = 0; y < grid.num_y; ++y) {
-        int hits = 0;
+        long hits = 0;
         for (const auto& cell : cells) {
           hits += impl_->hits.At(cell.x() + x * grid.step_cells, cell.y() + y * grid.step_cells);
         }
@@ -81,7 +94,7 @@ MatchResult CorrelationScanMatcher::MatchExhaustive(const Points2& scan,
       }
     }
   }
-  return internal::Finish(impl_->neighbours, options_, scan, grid, reference_from_prior, best,
+  return internal::Finish(impl_->neighbours, impl_->hits, options_, scan, grid, reference_from_prior, best,
                           scored);
 }
 
@@ -92,19 +105,16 @@ MatchResult CorrelationScanMatcher::MatchBranchAndBound(const Points2& scan,
   const internal::WindowGrid grid = internal::MakeWindowGrid(window, options_.grid_resolution_m);
   long scored = 0;
   const internal::Candidate best =
-      internal::BranchAndBound(impl_->hits, scan, reference_from_prior, grid, scored);
-  return internal::Finish(impl_->neighbours, options_, scan, grid, reference_from_prior, best,
+      internal::BranchAndBound(impl_->hits, impl_->MaxGridsFor(grid), scan, reference_from_prior,
+                               grid, scored);
+  return internal::Finish(impl_->neighbours, impl_->hits, options_, scan, grid, reference_from_prior, best,
                           scored);
 }
 
 double CorrelationScanMatcher::Score(const Points2& scan,
                                      const geometry::Pose2& reference_from_scan) const {
   if (scan.empty()) return 0.0;
-  int hits = 0;
-  for (const auto& point : scan) {
-    const Eigen::Vector2i cell = impl_->hits.CellOf(geometry::TransformPoint(reference_from_scan, point));
-    hits += impl_->hits.At(cell.x(), cell.y());
-  }
+  const int hits = internal::CountHits(impl_->hits, scan, reference_from_scan);
   return static_cast<double>(hits) / static_cast<double>(scan.size());
 }
 

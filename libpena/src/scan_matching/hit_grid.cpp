@@ -1,12 +1,13 @@
 #include "pena/scan_matching/hit_grid.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace pena::scan_matching {
 
-HitGrid::HitGrid(const Points2& reference_m, double resolution_m, double threshold_m)
+HitGrid::HitGrid(const Points2& reference_m, double resolution_m, double threshold_m, bool graded)
     : origin_m_(Eigen::Vector2d::Zero()), resolution_m_(resolution_m) {
   if (!(resolution_m > 0.0)) {
     throw std::invalid_argument("hit_grid.resolution_m must be > 0 m, got " +
@@ -27,7 +28,8 @@ HitGrid::HitGrid(const Points2& reference_m, double resolution_m, double thresho
   width_ = static_cast<int>(std::ceil((high.x() - origin_m_.x() + threshold_m) / resolution_m)) + 2;
   height_ = static_cast<int>(std::ceil((high.y() - origin_m_.y() + threshold_m) / resolution_m)) + 2;
   cells_.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0);
-  // Stamp a disc of radius threshold around each reference point: exact for cell centres.
+  // Stamp a disc of radius threshold around each reference point: exact for cell centres; a
+  // cell keeps the weight of its nearest reference point.
   const int reach = static_cast<int>(std::ceil(threshold_m / resolution_m)) + 1;
   const double threshold_sq = threshold_m * threshold_m;
   for (const auto& point : reference_m) {
@@ -39,10 +41,15 @@ HitGrid::HitGrid(const Points2& reference_m, double resolution_m, double thresho
         if (cx < 0 || cy < 0 || cx >= width_ || cy >= height_) continue;
         const Eigen::Vector2d cell_centre =
             origin_m_ + resolution_m_ * Eigen::Vector2d(cx + 0.5, cy + 0.5);
-        if ((cell_centre - point).squaredNorm() <= threshold_sq) {
-          cells_[static_cast<std::size_t>(cy) * static_cast<std::size_t>(width_) +
-                 static_cast<std::size_t>(cx)] = 1;
-        }
+        const double distance_sq = (cell_centre - point).squaredNorm();
+        if (distance_sq > threshold_sq) continue;
+        // At least 1 inside the threshold, so graded and binary grids agree on what is a hit.
+        const auto weight = graded ? static_cast<std::uint8_t>(std::max(
+                                         1.0, std::floor(kFullWeight * (1.0 - distance_sq / threshold_sq))))
+                                   : kFullWeight;
+        auto& cell = cells_[static_cast<std::size_t>(cy) * static_cast<std::size_t>(width_) +
+                            static_cast<std::size_t>(cx)];
+        cell = std::max(cell, weight);
       }
     }
   }

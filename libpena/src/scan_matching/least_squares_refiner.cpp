@@ -39,6 +39,24 @@ NormalEquations Linearise(const NearestNeighbours& neighbours, double threshold_
 
 }  // namespace
 
+int CountHits(const HitGrid& hits, const Points2& scan, const geometry::Pose2& reference_from_scan) {
+  int count = 0;
+  for (const auto& point : scan) {
+    const Eigen::Vector2i cell = hits.CellOf(geometry::TransformPoint(reference_from_scan, point));
+    count += hits.At(cell.x(), cell.y()) > 0 ? 1 : 0;
+  }
+  return count;
+}
+
+long WeightAt(const HitGrid& hits, const Points2& scan, const geometry::Pose2& reference_from_scan) {
+  long weight = 0;
+  for (const auto& point : scan) {
+    const Eigen::Vector2i cell = hits.CellOf(geometry::TransformPoint(reference_from_scan, point));
+    weight += hits.At(cell.x(), cell.y());
+  }
+  return weight;
+}
+
 Refinement RefineLeastSquares(const NearestNeighbours& neighbours,
                               const CorrelationMatcherOptions& options, const Points2& scan,
                               const geometry::Pose2& reference_from_scan) {
@@ -60,23 +78,23 @@ Refinement RefineLeastSquares(const NearestNeighbours& neighbours,
   return refinement;
 }
 
-MatchResult Finish(const NearestNeighbours& neighbours, const CorrelationMatcherOptions& options,
-                   const Points2& scan, const WindowGrid& grid,
+MatchResult Finish(const NearestNeighbours& neighbours, const HitGrid& hits,
+                   const CorrelationMatcherOptions& options, const Points2& scan, const WindowGrid& grid,
                    const geometry::Pose2& reference_from_prior, const Candidate& best, long scored) {
   MatchResult result;
   result.points = static_cast<int>(scan.size());
   result.candidates_scored = scored;
-  result.hits = std::max(best.score, 0);
+  result.grid_pose = best.score >= 0 ? PoseOf(grid, reference_from_prior, best) : reference_from_prior;
+  result.weight = std::max(best.score, 0L);
+  result.hits = best.score > 0 ? CountHits(hits, scan, result.grid_pose) : 0;
   result.score = scan.empty() ? 0.0 : static_cast<double>(result.hits) / static_cast<double>(scan.size());
   result.converged = result.hits > 0;
-  result.grid_pose = best.score >= 0 ? PoseOf(grid, reference_from_prior, best) : reference_from_prior;
   result.reference_from_scan = result.grid_pose;
   if (result.converged) {
     const Refinement refinement = RefineLeastSquares(neighbours, options, scan, result.grid_pose);
-    // Least squares may only polish the grid pose; a jump beyond one grid step is a false pairing.
-    const geometry::Pose2 delta = geometry::Between(result.grid_pose, refinement.reference_from_scan);
-    if (std::hypot(delta.x_m, delta.y_m) <= grid.step_xy_m &&
-        std::abs(delta.theta_rad) <= grid.step_theta_rad) {
+    // Least squares polishes the grid pose; it is kept unless it lowers the score (a false pairing
+    // pulled it away), so its reach is not tied to the grid step.
+    if (WeightAt(hits, scan, refinement.reference_from_scan) >= result.weight) {
       result.reference_from_scan = refinement.reference_from_scan;
     }
     result.information = refinement.information;

@@ -2,6 +2,7 @@
 // Step 5 of the paper's algorithm: least squares on the nearest-neighbour pairs of the best pose.
 
 #include "nearest_neighbours.hpp"
+#include "pena/scan_matching/hit_grid.hpp"
 #include "pena/scan_matching/correlation_scan_matcher.hpp"
 #include "window_grid.hpp"
 
@@ -19,9 +20,15 @@ Refinement RefineLeastSquares(const NearestNeighbours& neighbours,
                                    const CorrelationMatcherOptions& options, const Points2& scan,
                                    const geometry::Pose2& reference_from_scan);
 
+// Scan points on a hit cell (eq. 2's count) at a pose.
+int CountHits(const HitGrid& hits, const Points2& scan, const geometry::Pose2& reference_from_scan);
+
+// The searched score (sum of cell weights) at a pose.
+long WeightAt(const HitGrid& hits, const Points2& scan, const geometry::Pose2& reference_from_scan);
+
 // Builds the MatchResult of a search's best candidate, refinement included.
-MatchResult Finish(const NearestNeighbours& neighbours, const CorrelationMatcherOptions& options,
-                   const Points2& scan, const WindowGrid& grid,
+MatchResult Finish(const NearestNeighbours& neighbours, const HitGrid& hits,
+                   const CorrelationMatcherOptions& options, const Points2& scan, const WindowGrid& grid,
                    const geometry::Pose2& reference_from_prior, const Candidate& best, long scored);
 
 }  // namespace pena::scan_matching::internal

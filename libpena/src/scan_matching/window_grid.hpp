@@ -23,7 +23,7 @@ struct WindowGrid {
 // A scored candidate; the total order Better() makes every search agree on ties.
 struct Candidate {
   int angle = 0, x = 0, y = 0;
-  int score = -1;
+  long score = -1;  // sum of hit-grid weights
   long distance_sq = 0;  // squared centred index distance to the prior
 };
 

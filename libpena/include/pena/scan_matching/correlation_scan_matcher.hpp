@@ -19,6 +19,10 @@ struct CorrelationMatcherOptions {
   double grid_resolution_m = 0.02;  // lookup grid cell; window steps are multiples of it
   int refine_iterations = 8;        // least-squares rounds on nearest-neighbour pairs
   int min_refine_pairs = 10;        // fewer pairs: keep the grid pose
+  // Beyond the paper: rank poses by how close their hits are (weight 1 - (d/t_h)^2) rather than
+  // by the count alone. In clutter, eq. 2 saturates over a wide range of poses and the search
+  // then follows the prior; the graded score keeps a single peak. MatchResult::score stays eq. 2.
+  bool graded = true;
 };
 
 // The searched poses: the prior in the middle, full extents (the paper: 60 cm x 36 cm x 3 deg at
@@ -37,7 +41,8 @@ struct MatchResult {
   geometry::Pose2 reference_from_scan;    // refined pose
   geometry::Pose2 grid_pose;              // best pose of the search grid, before refinement
   double score = 0.0;                     // eq. 2 at grid_pose: hits / points, in [0, 1]
-  int hits = 0;
+  int hits = 0;                           // scan points within the threshold at grid_pose
+  long weight = 0;                        // the searched (graded) score at grid_pose
   int points = 0;
   long candidates_scored = 0;             // poses (or B&B nodes) scored: the work done
   // J^T J of the point-to-line residuals at the refined pose, (x_m, y_m, theta_rad): a small
@@ -46,6 +51,7 @@ struct MatchResult {
 };
 
 // Matches scans against one reference point set (a reference scan or a small local map).
+// One instance per thread.
 class CorrelationScanMatcher {
  public:
   // Builds the hit lookup and the nearest-neighbour index of the reference (its own frame).
@@ -60,7 +66,7 @@ class CorrelationScanMatcher {
                               const SearchWindow& window) const;
 
   // Same best grid pose as MatchExhaustive (same score, same tie-break), found by branch and
-  // bound over precomputed max-grids.
+  // bound over max-grids built on first use per step and cached (so not thread-safe).
   MatchResult MatchBranchAndBound(const Points2& scan, const geometry::Pose2& reference_from_prior,
                                   const SearchWindow& window) const;
 

@@ -12,18 +12,22 @@
 
 namespace pena::scan_matching {
 
-// A dense binary grid over the reference points' bounding box (plus the threshold).
+// A dense grid over the reference points' bounding box (plus the threshold). Each cell holds a
+// weight: kFullWeight for a hit in the paper's binary criterion, or, graded, how close the
+// nearest reference point is: kFullWeight * (1 - (d / threshold)^2); 0 beyond the threshold.
 class HitGrid {
  public:
+  static constexpr std::uint8_t kFullWeight = 255;
+
   // Throws std::invalid_argument if resolution_m or threshold_m is not > 0.
-  HitGrid(const Points2& reference_m, double resolution_m, double threshold_m);
+  HitGrid(const Points2& reference_m, double resolution_m, double threshold_m, bool graded = false);
 
   // Cell containing a point (may be outside the grid).
   Eigen::Vector2i CellOf(const Eigen::Vector2d& point_m) const {
     return {static_cast<int>(std::floor((point_m.x() - origin_m_.x()) / resolution_m_)),
             static_cast<int>(std::floor((point_m.y() - origin_m_.y()) / resolution_m_))};
   }
-  // 1 if the cell is a hit, 0 otherwise (and outside the grid).
+  // The cell's weight: > 0 for a hit (eq. 2), 0 otherwise and outside the grid.
   std::uint8_t At(int cell_x, int cell_y) const {
     if (cell_x < 0 || cell_y < 0 || cell_x >= width_ || cell_y >= height_) return 0;
     return cells_[static_cast<std::size_t>(cell_y) * static_cast<std::size_t>(width_) +
