@@ -9,5 +9,6 @@ void AddInfoCommand(CLI::App& app);      // pena info FILE
 void AddExportCommand(CLI::App& app);    // pena export --log LOG --carmen|--csm OUT
 void AddEvalCommand(CLI::App& app);      // pena eval --trajectory T (--relations R | --truth T)
 void AddSimulateCommand(CLI::App& app);  // pena simulate --scenario NAME|FILE --seed N --out DIR
+void AddOdometryCommand(CLI::App& app);  // pena odometry --log LOG --out DIR
 
 }  // namespace pena::cli

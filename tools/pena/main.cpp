@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   pena::cli::AddInfoCommand(app);
   pena::cli::AddEvalCommand(app);
   pena::cli::AddExportCommand(app);
+  pena::cli::AddOdometryCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

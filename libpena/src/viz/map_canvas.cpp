@@ -81,6 +81,21 @@ void MapCanvas::DrawPoints(const std::vector<Eigen::Vector2d>& points_m, const c
   }
 }
 
+void MapCanvas::DrawPixels(const std::vector<Eigen::Vector2d>& points_m,
+                           const cv::Scalar& color) {
+  // Direct writes: an anti-aliased circle per point is far slower, and runs have millions.
+  const cv::Vec3b bgr(cv::saturate_cast<uchar>(color[0]), cv::saturate_cast<uchar>(color[1]),
+                      cv::saturate_cast<uchar>(color[2]));
+  const auto map_cols = static_cast<double>(image_.cols - legend_panel_px_);
+  const auto rows = static_cast<double>(image_.rows);
+  for (const Eigen::Vector2d& point : points_m) {
+    const cv::Point2d pixel = ToPixel(point);
+    // Compared as doubles first: NaN and far-away points never reach the int conversion.
+    if (!(pixel.x >= 0.0 && pixel.x < map_cols && pixel.y >= 0.0 && pixel.y < rows)) continue;
+    image_.at<cv::Vec3b>(static_cast<int>(pixel.y), static_cast<int>(pixel.x)) = bgr;
+  }
+}
+
 void MapCanvas::DrawBox(const Eigen::Vector2d& min_m, const Eigen::Vector2d& max_m,
                         const cv::Scalar& color, bool filled) {
   cv::rectangle(image_, Fixed(ToPixel({min_m.x(), max_m.y()})),

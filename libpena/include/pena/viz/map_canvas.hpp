@@ -53,6 +53,8 @@ class MapCanvas {
                     int thickness_px = 1);
   void DrawPoints(const std::vector<Eigen::Vector2d>& points_m, const cv::Scalar& color,
                   int radius_px = 1);
+  // One pixel per point, no anti-aliasing, clipped to the map area: dense clouds (every scan).
+  void DrawPixels(const std::vector<Eigen::Vector2d>& points_m, const cv::Scalar& color);
   // An axis-aligned box (world corners), outlined or filled.
   void DrawBox(const Eigen::Vector2d& min_m, const Eigen::Vector2d& max_m, const cv::Scalar& color,
                bool filled);

@@ -1,0 +1,109 @@
+#pragma once
+// The per-entity laser odometry of the paper (section 2): predict with dead reckoning (or wheel
+// odometry), match the scan against a reference built from recent scans, correct the pose, and
+// change the reference when the entity has moved on. One call per sensor record.
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+
+#include "pena/dead_reckoning/human_dead_reckoning.hpp"
+#include "pena/geometry/pose2.hpp"
+#include "pena/scan_matching/correlation_scan_matcher.hpp"
+#include "pena/sensors/entity.hpp"
+#include "pena/sensors/record.hpp"
+
+namespace pena::odometry {
+
+// Where the motion prior between scans comes from.
+enum class MotionPrior {
+  kAuto,           // dead reckoning for people, wheel odometry for robots (or the scans' own)
+  kDeadReckoning,  // gyro + compass + stride (human)
+  kStrideOnly,     // strides along the last estimated heading, no gyro or compass (wide window)
+  kOdometry,       // wheel odometry records or the scans' odometry poses
+  kNone,           // no motion sensor: zero motion, wide window
+};
+
+// Options of the whole chain; validated by the constructor (messages name the field and unit).
+struct LaserOdometryOptions {
+  MotionPrior motion_prior = MotionPrior::kAuto;
+  bool match_scans = true;  // false: dead reckoning / odometry alone (for comparison)
+  dead_reckoning::HumanDeadReckoningOptions dead_reckoning;
+  scan_matching::CorrelationMatcherOptions matcher;
+  scan_matching::SearchWindow window;          // the paper's window, used after good matches
+  scan_matching::SearchWindow wide_window{0.80, 0.60, 1.3962634015954636, 0.02,
+                                          0.008726646259971648};  // 80 cm x 60 cm x 80 deg
+  double window_growth = 2.0;      // window factor after a failed match (up to wide_window)
+  double min_score = 0.4;          // eq. 2 score below which a match has failed
+  double min_range_m = 0.1;        // closer returns are the carrier's own body
+  double max_range_m = 40.0;       // farther returns are too sparse to match on
+  // The reference: a local map of the last keyframes, changed when the entity has moved far.
+  int local_map_keyframes = 8;
+  double keyframe_distance_m = 0.5;
+  double keyframe_angle_rad = 0.2617993877991494;  // 15 deg
+  double keyframe_min_score = 0.5;                 // overlap fallen below: new keyframe
+  // Tilt robustness for body-worn lasers: reference points not seen again by another keyframe
+  // (floor and ceiling hits move with the person) are left out of the reference. Robots carry a
+  // level laser; on the Freiburg logs confirming cost accuracy (mit-csail 0.13 -> 0.37 m), so
+  // kAuto confirms for people only.
+  enum class Confirm { kAuto, kAlways, kNever };
+  Confirm confirm_reference = Confirm::kAuto;
+  // Degenerate places: translation eigenvalue ratio of J^T J below this means a corridor-like
+  // direction; that component is taken from the prior.
+  double degenerate_eigen_ratio = 0.02;
+};
+
+// What happened at a scan.
+enum class MatchStatus {
+  kFirst,       // the first scan: it starts the map at the start pose
+  kMatched,     // corrected by scan matching
+  kDegenerate,  // matched, but one direction unconstrained: that component from the prior
+  kFailed,      // score too low: the prior is kept and the window grown
+  kNoPoints,    // an empty or all-no-return scan: the prior is kept
+  kPriorOnly,   // matching disabled
+};
+
+// The estimate at one scan, in the mission (world) frame.
+struct OdometryEstimate {
+  double stamp_s = 0.0;
+  geometry::Pose2 world_from_body;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  geometry::Pose2 world_from_prior;  // the prediction the matcher searched around
+  MatchStatus status = MatchStatus::kFirst;
+  double score = 0.0;                // eq. 2 at the best grid pose
+  int points = 0;                    // scan points matched
+  bool reference_changed = false;    // this scan became a keyframe (map localisation runs here)
+  bool wide_search = false;          // the window was larger than the paper's
+};
+
+// Counters over the run, for logs and reports.
+struct OdometryCounts {
+  long scans = 0, matched = 0, degenerate = 0, failed = 0, no_points = 0, keyframes = 0;
+  long wide_searches = 0;
+  long records_ignored = 0;  // out of order or not usable (see dead reckoning counts too)
+};
+
+// The chain for one entity. Not thread-safe; one instance per entity.
+class LaserOdometry {
+ public:
+  LaserOdometry(const LaserOdometryOptions& options, sensors::EntityKind kind,
+                const geometry::Pose2& world_from_start, double start_stamp_s);
+  ~LaserOdometry();
+  LaserOdometry(LaserOdometry&&) noexcept;
+  LaserOdometry& operator=(LaserOdometry&&) noexcept;
+
+  // Feeds one record in time order; a laser scan yields its estimate, anything else nullopt.
+  std::optional<OdometryEstimate> Add(const sensors::SensorRecord& record);
+
+  const OdometryCounts& counts() const;
+  const dead_reckoning::DeadReckoningCounts& dead_reckoning_counts() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// "first", "matched", "degenerate", "failed", "no_points", "prior_only".
+const char* ToString(MatchStatus status);
+
+}  // namespace pena::odometry

@@ -1,0 +1,235 @@
+#include "pena/odometry/laser_odometry.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "local_map.hpp"
+#include "motion_tracker.hpp"
+#include "options_check.hpp"
+#include "search_window.hpp"
+
+namespace pena::odometry {
+
+struct LaserOdometry::Impl {
+  Impl(const LaserOdometryOptions& checked, MotionPrior mode, bool confirm,
+       const geometry::Pose2& world_from_start, double start_stamp_s)
+      : options(checked),
+        motion(mode, checked.dead_reckoning, world_from_start, start_stamp_s),
+        local_map(checked.local_map_keyframes, 2.0 * checked.matcher.threshold_m, confirm),
+        window(checked),
+        estimate(world_from_start),
+        previous_estimate(world_from_start) {}
+
+  LaserOdometryOptions options;
+  internal::MotionTracker motion;
+  internal::LocalMap local_map;
+  std::optional<scan_matching::CorrelationScanMatcher> matcher;  // built from local_map
+  internal::WindowScale window;
+  geometry::Pose2 estimate;
+  // The motion sensor's pose at the latest keyframe: priors are anchored there (see Predict).
+  std::optional<geometry::Pose2> keyframe_motion_pose;
+  geometry::Pose2 previous_estimate;  // at the previous scan
+  geometry::Pose2 velocity;           // estimated motion over the previous scan interval
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  std::optional<double> last_scan_stamp_s;
+  OdometryCounts counts;
+
+  OdometryEstimate AddScan(const sensors::LaserScan& scan);
+  geometry::Pose2 Predict(const sensors::LaserScan& scan);
+  void Match(const scan_matching::Points2& points, OdometryEstimate& out);
+  scan_matching::MatchResult Search(const scan_matching::Points2& points,
+                                    const geometry::Pose2& prior, OdometryEstimate& out);
+  void TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out);
+};
+
+namespace {
+
+bool ResolveConfirm(LaserOdometryOptions::Confirm confirm, sensors::EntityKind kind) {
+  if (confirm == LaserOdometryOptions::Confirm::kAuto) return kind == sensors::EntityKind::kHuman;
+  return confirm == LaserOdometryOptions::Confirm::kAlways;
+}
+
+MotionPrior Resolve(MotionPrior prior, sensors::EntityKind kind) {
+  if (prior != MotionPrior::kAuto) return prior;
+  return kind == sensors::EntityKind::kHuman ? MotionPrior::kDeadReckoning : MotionPrior::kOdometry;
+}
+
+scan_matching::Points2 UsablePoints(const sensors::LaserScan& scan, const LaserOdometryOptions& o) {
+  scan_matching::Points2 points = scan_matching::ScanToPoints(scan, o.min_range_m);
+  std::erase_if(points, [&](const Eigen::Vector2d& p) { return p.norm() > o.max_range_m; });
+  return points;
+}
+
+// Degenerate places (a featureless corridor): the matched translation is only trusted across
+// the weak direction of J^T J; along it the prior's component is kept instead of sliding.
+bool KeepPriorAlongWeakDirection(const Eigen::Matrix3d& information, double ratio,
+                                 const geometry::Pose2& prior, geometry::Pose2& pose) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(information.topLeftCorner<2, 2>());
+  const double weak = solver.eigenvalues()(0);
+  const double strong = solver.eigenvalues()(1);
+  if (!(strong > 0.0) || weak >= ratio * strong) return false;
+  const Eigen::Vector2d direction = solver.eigenvectors().col(0);
+  const Eigen::Vector2d offset(prior.x_m - pose.x_m, prior.y_m - pose.y_m);
+  const Eigen::Vector2d shift = direction * direction.dot(offset);
+  pose.x_m += shift.x();
+  pose.y_m += shift.y();
+  return true;
+}
+
+}  // namespace
+
+LaserOdometry::LaserOdometry(const LaserOdometryOptions& options, sensors::EntityKind kind,
+                             const geometry::Pose2& world_from_start, double start_stamp_s)
+    : impl_(std::make_unique<Impl>(internal::CheckedOptions(options),
+                                   Resolve(options.motion_prior, kind),
+                                   ResolveConfirm(options.confirm_reference, kind),
+                                   world_from_start, start_stamp_s)) {
+  // Without a heading source the paper needs the wide window from the start.
+  const MotionPrior mode = impl_->motion.mode();
+  if (mode == MotionPrior::kStrideOnly || mode == MotionPrior::kNone) impl_->window.SetWide();
+}
+
+LaserOdometry::~LaserOdometry() = default;
+LaserOdometry::LaserOdometry(LaserOdometry&&) noexcept = default;
+LaserOdometry& LaserOdometry::operator=(LaserOdometry&&) noexcept = default;
+
+std::optional<OdometryEstimate> LaserOdometry::Add(const sensors::SensorRecord& record) {
+  if (const auto* scan = std::get_if<sensors::LaserScan>(&record)) {
+    if (impl_->last_scan_stamp_s && !(scan->stamp_s > *impl_->last_scan_stamp_s)) {
+      ++impl_->counts.records_ignored;  // a scan not after the previous one: time must advance
+      return std::nullopt;
+    }
+    impl_->last_scan_stamp_s = scan->stamp_s;
+    return impl_->AddScan(*scan);
+  }
+  if (!std::holds_alternative<sensors::GroundTruth>(record) && !impl_->motion.Add(record)) {
+    ++impl_->counts.records_ignored;
+  }
+  return std::nullopt;
+}
+
+OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
+  ++counts.scans;
+  OdometryEstimate out;
+  out.stamp_s = scan.stamp_s;
+  out.world_from_prior = Predict(scan);
+  const scan_matching::Points2 points = UsablePoints(scan, options);
+  out.points = static_cast<int>(points.size());
+  estimate = out.world_from_prior;
+  if (local_map.empty()) {
+    out.status = MatchStatus::kFirst;  // starts the map; until a scan has points, again and again
+    if (points.size() >= 10) TakeKeyframe(points, out);
+  } else if (!options.match_scans) {
+    out.status = MatchStatus::kPriorOnly;
+  } else if (points.size() < 10) {
+    out.status = MatchStatus::kNoPoints;  // dead reckoning carries on
+    ++counts.no_points;
+  } else {
+    Match(points, out);
+  }
+  out.world_from_body = estimate;
+  out.covariance = covariance;
+  velocity = geometry::Between(previous_estimate, estimate);
+  previous_estimate = estimate;
+  return out;
+}
+
+geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
+  const geometry::Pose2 increment = motion.TakeIncrement(scan);
+  const auto& motion_pose = motion.last_pose();
+  if (!motion_pose || !keyframe_motion_pose || local_map.empty()) {
+    return geometry::Compose(estimate, increment);
+  }
+  // Anchored at the keyframe, not chained scan to scan: logged odometry often repeats a pose for
+  // several scans and then jumps (mit-csail: 85 deg in one step after 1 s of zeros); chaining
+  // would add that catch-up on top of the motion the matcher already found.
+  return geometry::Compose(local_map.latest().world_from_body,
+                           geometry::Between(*keyframe_motion_pose, *motion_pose));
+}
+
+scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Points2& points,
+                                                       const geometry::Pose2& prior,
+                                                       OdometryEstimate& out) {
+  for (;;) {
+    const scan_matching::SearchWindow searched = window.Current();
+    out.wide_search = out.wide_search || window.IsWide();
+    scan_matching::MatchResult result =
+        window.IsBase() ? matcher->MatchExhaustive(points, prior, searched)
+                        : matcher->MatchBranchAndBound(points, prior, searched);
+    // A low score or a best pose on the window's edge (the optimum may lie outside): search
+    // again at once with a grown window, up to the wide one, before giving up on this scan.
+    const bool retry = result.score < options.min_score ||
+                       internal::OnWindowEdge(result.grid_pose, prior, searched);
+    if (!retry || !window.Grow()) return result;
+  }
+}
+
+void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEstimate& out) {
+  geometry::Pose2 prior = out.world_from_prior;
+  scan_matching::MatchResult result = Search(points, prior, out);
+  if (result.score < options.min_score) {
+    // The motion sensor itself may be wrong (logged odometry that froze, then jumped): try
+    // constant velocity and standing still too, and keep the best-scoring hypothesis.
+    for (const geometry::Pose2& alternative :
+         {geometry::Compose(previous_estimate, velocity), previous_estimate}) {
+      scan_matching::MatchResult other = Search(points, alternative, out);
+      if (other.score > result.score) {
+        result = other;
+        prior = alternative;
+      }
+    }
+  }
+  counts.wide_searches += out.wide_search ? 1 : 0;
+  out.score = result.score;
+  if (result.score < options.min_score) {
+    out.status = MatchStatus::kFailed;
+    ++counts.failed;
+    // Lost the reference: restart the local map from this scan at the dead-reckoning pose.
+    local_map.Clear();
+    TakeKeyframe(points, out);
+    return;
+  }
+  estimate = result.reference_from_scan;
+  const bool degenerate =
+      KeepPriorAlongWeakDirection(result.information, options.degenerate_eigen_ratio, prior, estimate);
+  out.status = degenerate ? MatchStatus::kDegenerate : MatchStatus::kMatched;
+  ++(degenerate ? counts.degenerate : counts.matched);
+  window.Shrink();
+  const geometry::Pose2 moved = geometry::Between(local_map.latest().world_from_body, estimate);
+  if (std::hypot(moved.x_m, moved.y_m) > options.keyframe_distance_m ||
+      std::abs(moved.theta_rad) > options.keyframe_angle_rad ||
+      result.score < options.keyframe_min_score) {
+    TakeKeyframe(points, out);
+  }
+}
+
+void LaserOdometry::Impl::TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out) {
+  local_map.Add({estimate, scan_matching::TransformPoints(estimate, points)});
+  keyframe_motion_pose = motion.last_pose();
+  matcher.emplace(options.matcher, local_map.Reference());
+  out.reference_changed = true;
+  ++counts.keyframes;
+}
+
+const OdometryCounts& LaserOdometry::counts() const { return impl_->counts; }
+
+const dead_reckoning::DeadReckoningCounts& LaserOdometry::dead_reckoning_counts() const {
+  return impl_->motion.dead_reckoning_counts();
+}
+
+const char* ToString(MatchStatus status) {
+  switch (status) {
+    case MatchStatus::kFirst: return "first";
+    case MatchStatus::kMatched: return "matched";
+    case MatchStatus::kDegenerate: return "degenerate";
+    case MatchStatus::kFailed: return "failed";
+    case MatchStatus::kNoPoints: return "no_points";
+    case MatchStatus::kPriorOnly: return "prior_only";
+  }
+  return "unknown";
+}
+
+}  // namespace pena::odometry

@@ -1,0 +1,85 @@
+#include "motion_tracker.hpp"
+
+#include <algorithm>
+
+namespace pena::odometry::internal {
+namespace {
+
+dead_reckoning::PosePrior StartPrior(const geometry::Pose2& pose, double stamp_s) {
+  dead_reckoning::PosePrior prior;
+  prior.stamp_s = stamp_s;
+  prior.world_from_body = pose;
+  return prior;
+}
+
+}  // namespace
+
+MotionTracker::MotionTracker(MotionPrior mode,
+                             const dead_reckoning::HumanDeadReckoningOptions& options,
+                             const geometry::Pose2& world_from_start, double start_stamp_s)
+    : mode_(mode), dead_reckoning_(options, StartPrior(world_from_start, start_stamp_s)) {}
+
+bool MotionTracker::Add(const sensors::SensorRecord& record) {
+  switch (mode_) {
+    case MotionPrior::kDeadReckoning:
+      return dead_reckoning_.Add(record) != dead_reckoning::DeadReckoningEvent::kIgnored;
+    case MotionPrior::kStrideOnly:
+      if (const auto* stride = std::get_if<sensors::StrideSample>(&record)) {
+        // The same sanity limits as full dead reckoning, without a heading source.
+        if (stride->length_m >= 0.0 && stride->length_m <= 2.0) stride_sum_m_ += stride->length_m;
+        return true;
+      }
+      return false;
+    case MotionPrior::kOdometry:
+      if (const auto* wheel = std::get_if<sensors::WheelOdometry>(&record)) {
+        if (latest_wheel_ && wheel->stamp_s <= latest_wheel_->stamp_s) return false;
+        previous_wheel_ = latest_wheel_;
+        latest_wheel_ = *wheel;
+        return true;
+      }
+      return false;
+    default:
+      return false;
+  }
+}
+
+std::optional<geometry::Pose2> MotionTracker::OdometryPoseAt(const sensors::LaserScan& scan) const {
+  if (scan.odometry_pose) return scan.odometry_pose;  // CARMEN FLASER: interpolated at the scan
+  if (!latest_wheel_) return std::nullopt;
+  if (!previous_wheel_ || scan.stamp_s >= latest_wheel_->stamp_s) return latest_wheel_->odom_pose;
+  const double span = latest_wheel_->stamp_s - previous_wheel_->stamp_s;
+  const double fraction = span > 0.0 ? (scan.stamp_s - previous_wheel_->stamp_s) / span : 1.0;
+  return geometry::Interpolate(previous_wheel_->odom_pose, latest_wheel_->odom_pose,
+                               std::clamp(fraction, 0.0, 1.0));
+}
+
+geometry::Pose2 MotionTracker::TakeIncrement(const sensors::LaserScan& scan) {
+  std::optional<geometry::Pose2> now;
+  switch (mode_) {
+    case MotionPrior::kDeadReckoning:
+      now = dead_reckoning_.PriorAt(scan.stamp_s).world_from_body;
+      break;
+    case MotionPrior::kOdometry:
+      now = OdometryPoseAt(scan);
+      break;
+    case MotionPrior::kStrideOnly: {
+      // No heading source: the strides are taken straight ahead; the wide window finds the turn.
+      const geometry::Pose2 forward{stride_sum_m_, 0.0, 0.0};
+      stride_sum_m_ = 0.0;
+      return forward;
+    }
+    default:
+      return {};
+  }
+  if (!now) return {};
+  const geometry::Pose2 increment =
+      last_odometry_pose_ ? geometry::Between(*last_odometry_pose_, *now) : geometry::Pose2{};
+  last_odometry_pose_ = now;
+  return increment;
+}
+
+const dead_reckoning::DeadReckoningCounts& MotionTracker::dead_reckoning_counts() const {
+  return dead_reckoning_.counts();
+}
+
+}  // namespace pena::odometry::internal

@@ -1,0 +1,40 @@
+#pragma once
+// The motion prior between scans, from whichever motion sensor the entity has.
+
+#include <optional>
+
+#include "pena/dead_reckoning/human_dead_reckoning.hpp"
+#include "pena/odometry/laser_odometry.hpp"
+
+namespace pena::odometry::internal {
+
+// Feeds on the non-scan records and gives the body-frame motion since the previous scan.
+class MotionTracker {
+ public:
+  MotionTracker(MotionPrior mode, const dead_reckoning::HumanDeadReckoningOptions& options,
+                const geometry::Pose2& world_from_start, double start_stamp_s);
+
+  // Gyro, compass, stride, wheel odometry; returns false for records it does not use.
+  bool Add(const sensors::SensorRecord& record);
+
+  // Motion of the body from the previous scan to this one (body frame of the previous scan).
+  geometry::Pose2 TakeIncrement(const sensors::LaserScan& scan);
+
+  // The pose in the motion sensor's own frame at the last scan given to TakeIncrement, where
+  // the sensor has one (dead reckoning, wheel odometry); nullopt for stride-only and none.
+  const std::optional<geometry::Pose2>& last_pose() const { return last_odometry_pose_; }
+
+  MotionPrior mode() const { return mode_; }
+  const dead_reckoning::DeadReckoningCounts& dead_reckoning_counts() const;
+
+ private:
+  std::optional<geometry::Pose2> OdometryPoseAt(const sensors::LaserScan& scan) const;
+
+  MotionPrior mode_;
+  dead_reckoning::HumanDeadReckoning dead_reckoning_;
+  std::optional<geometry::Pose2> last_odometry_pose_;     // at the previous scan
+  std::optional<sensors::WheelOdometry> previous_wheel_, latest_wheel_;
+  double stride_sum_m_ = 0.0;                             // since the previous scan
+};
+
+}  // namespace pena::odometry::internal

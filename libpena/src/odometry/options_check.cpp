@@ -1,0 +1,35 @@
+#include "options_check.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace pena::odometry::internal {
+namespace {
+
+void Require(bool ok, const char* field, const char* rule, double value) {
+  if (!ok) {
+    throw std::invalid_argument(std::string("laser_odometry.") + field + " must be " + rule +
+                                ", got " + std::to_string(value));
+  }
+}
+
+}  // namespace
+
+const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
+  Require(o.window_growth > 1.0, "window_growth", "> 1", o.window_growth);
+  Require(o.min_score > 0.0 && o.min_score < 1.0, "min_score", "in (0, 1)", o.min_score);
+  Require(o.min_range_m >= 0.0, "min_range_m", ">= 0 m", o.min_range_m);
+  Require(o.max_range_m > o.min_range_m, "max_range_m", "> min_range_m (m)", o.max_range_m);
+  Require(o.local_map_keyframes >= 1, "local_map_keyframes", ">= 1", o.local_map_keyframes);
+  Require(o.keyframe_distance_m > 0.0, "keyframe_distance_m", "> 0 m", o.keyframe_distance_m);
+  Require(o.keyframe_angle_rad > 0.0, "keyframe_angle_rad", "> 0 rad", o.keyframe_angle_rad);
+  Require(o.keyframe_min_score >= 0.0 && o.keyframe_min_score <= 1.0, "keyframe_min_score",
+          "in [0, 1]", o.keyframe_min_score);
+  Require(o.degenerate_eigen_ratio >= 0.0 && o.degenerate_eigen_ratio < 1.0,
+          "degenerate_eigen_ratio", "in [0, 1)", o.degenerate_eigen_ratio);
+  scan_matching::ValidateWindow(o.window, o.matcher);
+  scan_matching::ValidateWindow(o.wide_window, o.matcher);
+  return o;
+}
+
+}  // namespace pena::odometry::internal

@@ -1,0 +1,145 @@
+// The per-entity chain on simulated missions (ground truth known) and on broken input.
+#include "pena/odometry/laser_odometry.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "pena/sim/scenario.hpp"
+#include "pena/sim/simulator.hpp"
+
+namespace pena::odometry {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// The team scenario's robot (level laser, wheel odometry) and its first firefighter.
+const sim::SimulationResult& Team() {
+  static const sim::SimulationResult result = [] {
+    const sim::Scenario scenario =
+        sim::ParseScenario(std::string(*sim::BuiltinScenarioText("team")), "builtin:team");
+    const sim::Simulator simulator{sim::SimulationOptions{}};
+    return simulator.Run(scenario);
+  }();
+  return result;
+}
+
+const sim::EntityRecording& Entity(const std::string& id) {
+  for (const auto& entity : Team().entities) {
+    if (entity.id == id) return entity;
+  }
+  throw std::runtime_error("no entity " + id);
+}
+
+struct Replayed {
+  std::vector<OdometryEstimate> estimates;
+  OdometryCounts counts;
+};
+
+Replayed Replay(const sim::EntityRecording& entity, const LaserOdometryOptions& options = {}) {
+  const sensors::GroundTruth& start = entity.truth.front();
+  LaserOdometry odometry(options, entity.kind, start.world_from_body, entity.start_s);
+  Replayed run;
+  for (const auto& record : entity.records) {
+    if (auto estimate = odometry.Add(record)) run.estimates.push_back(*estimate);
+  }
+  run.counts = odometry.counts();
+  return run;
+}
+
+double FinalErrorM(const sim::EntityRecording& entity, const Replayed& run) {
+  const geometry::Pose2& truth = entity.truth.back().world_from_body;
+  const geometry::Pose2& estimate = run.estimates.back().world_from_body;
+  return std::hypot(truth.x_m - estimate.x_m, truth.y_m - estimate.y_m);
+}
+
+TEST(LaserOdometry, RobotWithLevelLaserEndsWithinHalfAPercent) {
+  const auto& robot = Entity("robot1");
+  const Replayed matched = Replay(robot);
+  LaserOdometryOptions odometry_only;
+  odometry_only.match_scans = false;
+  const Replayed unmatched = Replay(robot, odometry_only);
+  ASSERT_EQ(matched.estimates.size(), robot.truth.size());
+  EXPECT_EQ(matched.counts.failed, 0);
+  // 79 m driven: scan matching removes the wheel odometry's scale error and slip.
+  EXPECT_LT(FinalErrorM(robot, matched), 0.4);
+  EXPECT_LT(FinalErrorM(robot, matched), 0.2 * FinalErrorM(robot, unmatched));
+}
+
+TEST(LaserOdometry, OnePoseAtEveryScanStamp) {
+  const auto& firefighter = Entity("ff1");
+  const Replayed run = Replay(firefighter);
+  ASSERT_EQ(run.estimates.size(), firefighter.truth.size());
+  for (std::size_t i = 0; i < run.estimates.size(); ++i) {
+    EXPECT_EQ(run.estimates[i].stamp_s, firefighter.truth[i].stamp_s);
+  }
+  EXPECT_GT(run.counts.keyframes, 10);
+}
+
+// A stream with every fault the issue lists, in between good scans: the chain reports each and
+// carries on from dead reckoning; it never throws.
+TEST(LaserOdometry, CarriesOnThroughBadInput) {
+  const auto& firefighter = Entity("ff1");
+  LaserOdometry odometry({}, firefighter.kind, firefighter.truth.front().world_from_body,
+                         firefighter.start_s);
+  std::vector<MatchStatus> statuses;
+  int scans = 0;
+  bool long_stride_sent = false;
+  for (const auto& record : firefighter.records) {
+    sensors::SensorRecord fed = record;
+    if (auto* scan = std::get_if<sensors::LaserScan>(&fed)) {
+      ++scans;
+      if (scans == 40) scan->ranges_m.clear();                                        // empty
+      if (scans == 41) std::fill(scan->ranges_m.begin(), scan->ranges_m.end(),
+                                 sensors::LaserScan::kNoReturn);                     // all no-returns
+      if (scans == 42) {
+        for (std::size_t i = 0; i < scan->ranges_m.size(); i += 3) {
+          scan->ranges_m[i] = std::numeric_limits<float>::quiet_NaN();               // NaNs
+        }
+      }
+    }
+    if (auto* stride = std::get_if<sensors::StrideSample>(&fed); stride && scans >= 50 && !long_stride_sent) {
+      stride->length_m = 40.0;                                                        // 40 m stride
+      long_stride_sent = true;
+    }
+    if (std::holds_alternative<sensors::GyroSample>(fed) && scans >= 60 && scans < 80) continue;  // 5 s gap
+    std::optional<OdometryEstimate> estimate;
+    ASSERT_NO_THROW(estimate = odometry.Add(fed));
+    if (estimate) statuses.push_back(estimate->status);
+  }
+  ASSERT_EQ(statuses.size(), firefighter.truth.size());
+  EXPECT_EQ(statuses[39], MatchStatus::kNoPoints);
+  EXPECT_EQ(statuses[40], MatchStatus::kNoPoints);
+  EXPECT_NE(statuses[41], MatchStatus::kNoPoints);  // two thirds of the beams still match
+  EXPECT_GE(odometry.dead_reckoning_counts().strides_rejected, 1u);
+  EXPECT_GE(odometry.dead_reckoning_counts().gyro_gaps, 1u);
+  EXPECT_EQ(odometry.counts().no_points, 2);
+}
+
+TEST(LaserOdometry, ScanGoingBackInTimeIsIgnored) {
+  LaserOdometry odometry({}, sensors::EntityKind::kRobot, {}, 0.0);
+  sensors::LaserScan scan;
+  scan.geometry = {-std::numbers::pi / 2, std::numbers::pi / 360, 30.0};
+  scan.ranges_m.assign(361, 3.0f);
+  scan.stamp_s = 1.0;
+  EXPECT_TRUE(odometry.Add(scan).has_value());
+  scan.stamp_s = 0.5;
+  EXPECT_FALSE(odometry.Add(scan).has_value());
+  EXPECT_EQ(odometry.counts().records_ignored, 1);
+}
+
+TEST(LaserOdometry, InvalidOptionNamesField) {
+  LaserOdometryOptions options;
+  options.min_score = 1.5;
+  try {
+    LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("laser_odometry.min_score"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace pena::odometry

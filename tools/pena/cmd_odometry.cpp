@@ -1,0 +1,354 @@
+// pena odometry: runs the per-entity laser odometry (odometry::LaserOdometry) over a CARMEN or
+// native log and writes DIR/trajectory.tum, odometry.csv, odometry.png and summary.json.
+// Options, outputs and formats: docs/odometry.md.
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <opencv2/imgcodecs.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "pena/io/log_source.hpp"
+#include "pena/io/trajectory_io.hpp"
+#include "pena/odometry/laser_odometry.hpp"
+#include "pena/viz/trajectory_picture.hpp"
+
+namespace pena::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct OdometryArgs {
+  std::string log;
+  std::string out;
+  std::string prior = "auto";
+  bool no_matching = false;
+  std::string start;
+  bool quiet = false;
+  io::ReadOptions read;
+};
+
+const std::map<std::string, odometry::MotionPrior> kPriors = {
+    {"auto", odometry::MotionPrior::kAuto},
+    {"dead-reckoning", odometry::MotionPrior::kDeadReckoning},
+    {"stride-only", odometry::MotionPrior::kStrideOnly},
+    {"odometry", odometry::MotionPrior::kOdometry},
+    {"none", odometry::MotionPrior::kNone}};
+
+std::string Fixed(double value, int decimals) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
+  return buffer;
+}
+
+double Percent(long part, long whole) {
+  return whole == 0 ? 0.0 : 100.0 * static_cast<double>(part) / static_cast<double>(whole);
+}
+
+// "X,Y,THETA_DEG" -> pose (metres, metres, radians); anything else is a usage error.
+geometry::Pose2 ParseStart(const std::string& text) {
+  const auto fail = [&] {
+    return std::runtime_error("--start: expected X,Y,THETA_DEG (metres, metres, degrees), got '" +
+                              text + "'");
+  };
+  double values[3];
+  const char* cursor = text.c_str();
+  for (int i = 0; i < 3; ++i) {
+    char* end = nullptr;
+    values[i] = std::strtod(cursor, &end);
+    if (end == cursor || !std::isfinite(values[i])) throw fail();
+    if (*end != (i < 2 ? ',' : '\0')) throw fail();
+    cursor = end + 1;
+  }
+  return {values[0], values[1], values[2] * std::numbers::pi / 180.0};
+}
+
+// Where the run starts, and the records read from the log to find out.
+struct Start {
+  geometry::Pose2 world_from_body;
+  std::string source;  // "--start", "ground truth", "odometry", "identity"
+  double stamp_s = 0.0;
+  std::vector<sensors::SensorRecord> read_ahead;
+};
+
+// Reads up to the first ground-truth record or scan (whichever comes first): the start pose is
+// --start, else the native log's first ground truth (the mission's known start), else the first
+// scan's odometry pose, else the identity. Truth is used for nothing else.
+Start FindStart(io::LogSource& source, const std::optional<geometry::Pose2>& start_override) {
+  Start start;
+  while (auto record = source.Next()) {
+    start.read_ahead.push_back(std::move(*record));
+    const sensors::SensorRecord& last = start.read_ahead.back();
+    if (const auto* truth = std::get_if<sensors::GroundTruth>(&last)) {
+      if (source.description().format == "pena-log") {
+        start.world_from_body = truth->world_from_body;
+        start.source = "ground truth";
+      }
+      break;
+    }
+    if (const auto* scan = std::get_if<sensors::LaserScan>(&last)) {
+      if (scan->odometry_pose) {
+        start.world_from_body = *scan->odometry_pose;
+        start.source = "odometry";
+      }
+      break;
+    }
+  }
+  if (start_override) {
+    start.world_from_body = *start_override;
+    start.source = "--start";
+  }
+  if (start.source.empty()) start.source = "identity";
+  if (!start.read_ahead.empty()) start.stamp_s = sensors::StampOf(start.read_ahead.front());
+  return start;
+}
+
+// One stderr line, rewritten in place on a terminal, at most every 2 s once 500 scans are done.
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool enabled) : enabled_(enabled), terminal_(isatty(STDERR_FILENO) == 1) {}
+
+  void Update(long scans, double log_elapsed_s, double wall_s) {
+    if (!enabled_ || scans <= 500 || wall_s < last_wall_s_ + 2.0) return;
+    last_wall_s_ = wall_s;
+    shown_ = true;
+    std::fprintf(stderr, "%spena odometry: %ld scans, log time %s s, %s x real time%s",
+                 terminal_ ? "\r" : "", scans, Fixed(log_elapsed_s, 1).c_str(),
+                 Fixed(wall_s > 0.0 ? log_elapsed_s / wall_s : 0.0, 1).c_str(),
+                 terminal_ ? "" : "\n");
+    std::fflush(stderr);
+  }
+  // Ends the rewritten line so later output (or an error) starts on its own line.
+  ~ProgressLine() {
+    if (shown_ && terminal_) std::fputc('\n', stderr);
+  }
+
+ private:
+  bool enabled_;
+  bool terminal_;
+  bool shown_ = false;
+  double last_wall_s_ = 0.0;
+};
+
+// Everything the run produced, for the output files.
+struct RunResult {
+  std::vector<odometry::OdometryEstimate> estimates;
+  viz::TrajectoryPicture picture;
+  geometry::Pose2 world_from_start;
+  std::string start_source;
+  odometry::OdometryCounts counts;
+  long prior_only = 0;  // scans with matching disabled (not in OdometryCounts)
+  long records = 0;
+  double first_stamp_s = 0.0;
+  double last_stamp_s = 0.0;
+  double wall_s = 0.0;  // reading the log and running the odometry
+};
+
+// The scan's returns placed at the estimated body pose (the laser sits at the body origin).
+std::vector<Eigen::Vector2d> WorldPoints(const sensors::LaserScan& scan,
+                                         const geometry::Pose2& world_from_body) {
+  std::vector<Eigen::Vector2d> points;
+  points.reserve(scan.ranges_m.size());
+  for (std::size_t b = 0; b < scan.ranges_m.size(); ++b) {
+    if (!scan.IsReturn(b)) continue;
+    const double r = scan.ranges_m[b];
+    const double a = scan.BeamAngle(b);
+    points.push_back(geometry::TransformPoint(world_from_body, {r * std::cos(a), r * std::sin(a)}));
+  }
+  return points;
+}
+
+void Record(const sensors::SensorRecord& record, odometry::LaserOdometry& chain, RunResult& run) {
+  ++run.records;
+  run.last_stamp_s = std::max(run.last_stamp_s, sensors::StampOf(record));
+  const std::optional<odometry::OdometryEstimate> estimate = chain.Add(record);
+  if (!estimate) return;
+  const auto* scan = std::get_if<sensors::LaserScan>(&record);
+  const geometry::Pose2& pose = estimate->world_from_body;
+  run.picture.scans_m.push_back(scan ? WorldPoints(*scan, pose) : std::vector<Eigen::Vector2d>{});
+  run.picture.estimate.push_back({estimate->stamp_s, pose});
+  if (estimate->reference_changed) run.picture.keyframes_m.emplace_back(pose.x_m, pose.y_m);
+  if (estimate->status == odometry::MatchStatus::kFailed)
+    run.picture.failed_m.emplace_back(pose.x_m, pose.y_m);
+  if (estimate->status == odometry::MatchStatus::kPriorOnly) ++run.prior_only;
+  run.estimates.push_back(*estimate);
+}
+
+RunResult RunChain(io::LogSource& source, const OdometryArgs& args,
+                   const std::optional<geometry::Pose2>& start_override) {
+  const auto started = Clock::now();
+  Start start = FindStart(source, start_override);
+  odometry::LaserOdometryOptions options;
+  options.motion_prior = kPriors.at(args.prior);
+  options.match_scans = !args.no_matching;
+  const sensors::EntityKind kind = source.description().kind.value_or(sensors::EntityKind::kRobot);
+  odometry::LaserOdometry chain(options, kind, start.world_from_body, start.stamp_s);
+  RunResult run;
+  run.first_stamp_s = run.last_stamp_s = start.stamp_s;
+  run.world_from_start = start.world_from_body;
+  run.start_source = start.source;
+  ProgressLine progress(!args.quiet);
+  for (const sensors::SensorRecord& record : start.read_ahead) Record(record, chain, run);
+  start.read_ahead.clear();
+  while (const auto record = source.Next()) {
+    Record(*record, chain, run);
+    const std::chrono::duration<double> wall = Clock::now() - started;
+    progress.Update(static_cast<long>(run.estimates.size()), run.last_stamp_s - run.first_stamp_s,
+                    wall.count());
+  }
+  run.counts = chain.counts();
+  run.wall_s = std::chrono::duration<double>(Clock::now() - started).count();
+  return run;
+}
+
+void WriteCsv(const std::filesystem::path& path, const RunResult& run) {
+  std::ofstream out(path);
+  out << "stamp,x,y,theta,status,score,points,reference_changed,wide_search,prior_x,prior_y,"
+         "prior_theta\n";
+  char line[320];
+  for (const odometry::OdometryEstimate& e : run.estimates) {
+    const geometry::Pose2& p = e.world_from_body;
+    const geometry::Pose2& q = e.world_from_prior;
+    std::snprintf(line, sizeof(line), "%.6f,%.6f,%.6f,%.6f,%s,%.4f,%d,%d,%d,%.6f,%.6f,%.6f\n",
+                  e.stamp_s, p.x_m, p.y_m, p.theta_rad, odometry::ToString(e.status), e.score,
+                  e.points, e.reference_changed ? 1 : 0, e.wide_search ? 1 : 0, q.x_m, q.y_m,
+                  q.theta_rad);
+    out << line;
+  }
+  if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+std::string JsonString(const std::string& text) {
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    if (static_cast<unsigned char>(c) >= 0x20) quoted += c;
+  }
+  return quoted + "\"";
+}
+
+double Speed(const RunResult& run) {
+  return run.wall_s > 0.0 ? (run.last_stamp_s - run.first_stamp_s) / run.wall_s : 0.0;
+}
+
+void WriteSummaryJson(const std::filesystem::path& path, const OdometryArgs& args,
+                      const io::LogSource& source, const RunResult& run, double total_wall_s) {
+  const odometry::OdometryCounts& c = run.counts;
+  std::ofstream out(path);
+  out << "{\"log\": " << JsonString(args.log)
+      << ", \"format\": " << JsonString(source.description().format)
+      << ", \"prior\": " << JsonString(args.prior)
+      << ", \"start_pose_source\": " << JsonString(run.start_source)
+      << ", \"matching\": " << (args.no_matching ? "false" : "true")
+      << ", \"records\": " << run.records << ", \"skipped_lines\": " << source.skipped()
+      << ", \"scans\": " << c.scans << ", \"matched\": " << c.matched
+      << ", \"degenerate\": " << c.degenerate << ", \"failed\": " << c.failed
+      << ", \"no_points\": " << c.no_points << ", \"prior_only\": " << run.prior_only
+      << ", \"keyframes\": " << c.keyframes << ", \"wide_searches\": " << c.wide_searches
+      << ", \"records_ignored\": " << c.records_ignored
+      << ", \"log_duration_s\": " << Fixed(run.last_stamp_s - run.first_stamp_s, 6)
+      << ", \"processing_wall_s\": " << Fixed(run.wall_s, 3)
+      << ", \"total_wall_s\": " << Fixed(total_wall_s, 3)
+      << ", \"speed_x_real_time\": " << Fixed(Speed(run), 2) << "}\n";
+  if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+void PrintSummary(const RunResult& run, const std::filesystem::path& out_dir) {
+  const odometry::OdometryCounts& c = run.counts;
+  const geometry::Pose2& s = run.world_from_start;
+  std::cout << "start pose (" << run.start_source << "): x " << Fixed(s.x_m, 3) << " m, y "
+            << Fixed(s.y_m, 3) << " m, theta " << Fixed(s.theta_rad * 180.0 / std::numbers::pi, 2)
+            << " deg at " << Fixed(run.first_stamp_s, 6) << " s\n";
+  const auto part = [&](const char* name, long count) {
+    std::cout << ", " << count << " " << name << " (" << Fixed(Percent(count, c.scans), 1) << "%)";
+  };
+  std::cout << c.scans << " scans";
+  part("matched", c.matched);
+  part("degenerate", c.degenerate);
+  part("failed", c.failed);
+  part("no points", c.no_points);
+  if (run.prior_only > 0) part("prior only", run.prior_only);
+  std::cout << ", " << c.keyframes << " keyframes\n";
+  std::cout << "log " << Fixed(run.last_stamp_s - run.first_stamp_s, 1) << " s processed in "
+            << Fixed(run.wall_s, 2) << " s wall: " << Fixed(Speed(run), 1) << " x real time\n";
+  std::cout << "wrote " << (out_dir / "trajectory.tum").string() << ", odometry.csv, "
+            << "odometry.png, summary.json\n";
+}
+
+// The true path of a simulated entity (truth.tum next to its native log), for the picture only.
+geometry::Trajectory TruthNextTo(const io::LogSource& source) {
+  const io::LogDescription& description = source.description();
+  const std::filesystem::path truth = description.path.parent_path() / "truth.tum";
+  if (description.format != "pena-log" || !std::filesystem::exists(truth)) return {};
+  try {
+    return io::ReadTum(truth);
+  } catch (const std::exception& error) {
+    std::cerr << "pena: warning: " << error.what() << " (picture drawn without the true path)\n";
+    return {};
+  }
+}
+
+void RunOdometry(const OdometryArgs& args) {
+  const auto started = Clock::now();
+  std::optional<geometry::Pose2> start_override;
+  if (!args.start.empty()) start_override = ParseStart(args.start);
+  const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
+  const std::filesystem::path out_dir(args.out);
+  std::filesystem::create_directories(out_dir);
+  RunResult run = RunChain(*source, args, start_override);
+  io::WriteTum(out_dir / "trajectory.tum", run.picture.estimate);
+  WriteCsv(out_dir / "odometry.csv", run);
+  run.picture.truth = TruthNextTo(*source);
+  run.picture.title = std::filesystem::path(args.log).filename().string() + ", prior " +
+                      args.prior + (args.no_matching ? ", no matching" : "");
+  const std::string picture = (out_dir / "odometry.png").string();
+  if (!cv::imwrite(picture, viz::RenderTrajectory(run.picture))) {
+    throw std::runtime_error(picture + ": cannot write the PNG");
+  }
+  const double total_wall_s = std::chrono::duration<double>(Clock::now() - started).count();
+  WriteSummaryJson(out_dir / "summary.json", args, *source, run, total_wall_s);
+  PrintSummary(run, out_dir);
+}
+
+}  // namespace
+
+void AddOdometryCommand(CLI::App& app) {
+  auto args = std::make_shared<OdometryArgs>();
+  CLI::App* command = app.add_subcommand(
+      "odometry", "Run the per-entity laser odometry on a log: trajectory, per-scan CSV, picture");
+  command->add_option("--log", args->log, "Input log: CARMEN (.clf, plain or gzip) or PeNa log")
+      ->required();
+  command->add_option("--out", args->out, "Output directory (created if missing)")->required();
+  std::vector<std::string> prior_names;
+  for (const auto& [name, prior] : kPriors) prior_names.push_back(name);
+  command->add_option("--prior", args->prior, "Motion prior between scans")
+      ->check(CLI::IsMember(prior_names))
+      ->capture_default_str();
+  command->add_flag("--no-matching", args->no_matching,
+                    "Dead reckoning / odometry alone: no scan matching (for comparison)");
+  command->add_flag("--skip-malformed", args->read.skip_malformed,
+                    "Skip malformed lines (and count them) instead of stopping at the first");
+  command
+      ->add_option("--max-range", args->read.carmen_max_range_m,
+                   "CARMEN maximum range, metres: ranges at or above it are no-returns")
+      ->check(CLI::Range(0.01, 1000.0))
+      ->capture_default_str();
+  command->add_option("--start", args->start,
+                      "Start pose X,Y,THETA_DEG (m, m, deg); default: see docs/odometry.md");
+  command->add_flag("--quiet", args->quiet, "No progress line on stderr");
+  command->callback([args] { RunOdometry(*args); });
+}
+
+}  // namespace pena::cli
