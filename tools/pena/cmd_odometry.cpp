@@ -34,11 +34,16 @@ struct OdometryArgs {
   std::string log;
   std::string out;
   std::string prior = "auto";
+  std::string confirm = "never";
   bool no_matching = false;
   std::string start;
   bool quiet = false;
   io::ReadOptions read;
 };
+
+const std::map<std::string, odometry::LaserOdometryOptions::Confirm> kConfirm = {
+    {"always", odometry::LaserOdometryOptions::Confirm::kAlways},
+    {"never", odometry::LaserOdometryOptions::Confirm::kNever}};
 
 const std::map<std::string, odometry::MotionPrior> kPriors = {
     {"auto", odometry::MotionPrior::kAuto},
@@ -193,6 +198,7 @@ RunResult RunChain(io::LogSource& source, const OdometryArgs& args,
   odometry::LaserOdometryOptions options;
   options.motion_prior = kPriors.at(args.prior);
   options.match_scans = !args.no_matching;
+  options.confirm_reference = kConfirm.at(args.confirm);
   const sensors::EntityKind kind = source.description().kind.value_or(sensors::EntityKind::kRobot);
   odometry::LaserOdometry chain(options, kind, start.world_from_body, start.stamp_s);
   RunResult run;
@@ -335,6 +341,11 @@ void AddOdometryCommand(CLI::App& app) {
   for (const auto& [name, prior] : kPriors) prior_names.push_back(name);
   command->add_option("--prior", args->prior, "Motion prior between scans")
       ->check(CLI::IsMember(prior_names))
+      ->capture_default_str();
+  command->add_option("--confirm", args->confirm,
+                     "Keep only reference points a second keyframe saw again (a tilt-robustness "
+                     "experiment; measured to cost accuracy, see docs/odometry.md)")
+      ->check(CLI::IsMember({"always", "never"}))
       ->capture_default_str();
   command->add_flag("--no-matching", args->no_matching,
                     "Dead reckoning / odometry alone: no scan matching (for comparison)");
