@@ -34,7 +34,7 @@ struct OdometryArgs {
   std::string log;
   std::string out;
   std::string prior = "auto";
-  std::string confirm = "never";
+  std::string confirm = "auto";
   bool no_matching = false;
   std::string start;
   bool quiet = false;
@@ -42,6 +42,7 @@ struct OdometryArgs {
 };
 
 const std::map<std::string, odometry::LaserOdometryOptions::Confirm> kConfirm = {
+    {"auto", odometry::LaserOdometryOptions::Confirm::kAuto},
     {"always", odometry::LaserOdometryOptions::Confirm::kAlways},
     {"never", odometry::LaserOdometryOptions::Confirm::kNever}};
 
@@ -343,9 +344,9 @@ void AddOdometryCommand(CLI::App& app) {
       ->check(CLI::IsMember(prior_names))
       ->capture_default_str();
   command->add_option("--confirm", args->confirm,
-                     "Keep only reference points a second keyframe saw again (a tilt-robustness "
-                     "experiment; measured to cost accuracy, see docs/odometry.md)")
-      ->check(CLI::IsMember({"always", "never"}))
+                     "Keep only reference points a second keyframe saw again (tilt robustness "
+                     "for body-worn lasers); auto = for people only")
+      ->check(CLI::IsMember({"auto", "always", "never"}))
       ->capture_default_str();
   command->add_flag("--no-matching", args->no_matching,
                     "Dead reckoning / odometry alone: no scan matching (for comparison)");

@@ -47,6 +47,11 @@ struct LaserOdometry::Impl {
 
 namespace {
 
+bool ResolveConfirm(LaserOdometryOptions::Confirm confirm, sensors::EntityKind kind) {
+  if (confirm == LaserOdometryOptions::Confirm::kAuto) return kind == sensors::EntityKind::kHuman;
+  return confirm == LaserOdometryOptions::Confirm::kAlways;
+}
+
 MotionPrior Resolve(MotionPrior prior, sensors::EntityKind kind) {
   if (prior != MotionPrior::kAuto) return prior;
   return kind == sensors::EntityKind::kHuman ? MotionPrior::kDeadReckoning : MotionPrior::kOdometry;
@@ -80,8 +85,7 @@ LaserOdometry::LaserOdometry(const LaserOdometryOptions& options, sensors::Entit
                              const geometry::Pose2& world_from_start, double start_stamp_s)
     : impl_(std::make_unique<Impl>(internal::CheckedOptions(options),
                                    Resolve(options.motion_prior, kind),
-                                   options.confirm_reference ==
-                                       LaserOdometryOptions::Confirm::kAlways,
+                                   ResolveConfirm(options.confirm_reference, kind),
                                    world_from_start, start_stamp_s)) {
   // Without a heading source the paper needs the wide window from the start.
   const MotionPrior mode = impl_->motion.mode();
