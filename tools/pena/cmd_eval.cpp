@@ -1,15 +1,19 @@
 // pena eval: scores an estimated trajectory against ground-truth relations (Kuemmerle et al. 2009)
-// and/or a truth trajectory. Metric definitions are in docs/evaluation.md.
+// and/or a truth trajectory, and/or a line map against the walls the laser saw. Metric definitions
+// are in docs/evaluation.md and docs/line-extraction.md.
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
+#include "pena/eval/line_map_error.hpp"
 #include "pena/eval/relation_error.hpp"
 #include "pena/eval/trajectory_error.hpp"
+#include "pena/io/line_csv.hpp"
 #include "pena/io/trajectory_io.hpp"
 
 namespace pena::cli {
@@ -21,6 +25,8 @@ struct EvalArgs {
   std::string trajectory;
   std::string relations;
   std::string truth;
+  std::string lines;
+  std::string walls;
   bool align = false;
   bool json = false;
   double stamp_tolerance_s = eval::kDefaultStampTolerance_s;
@@ -31,6 +37,7 @@ struct EvalReport {
   std::size_t poses = 0;
   std::optional<eval::RelationErrorSummary> relations;
   std::optional<eval::TrajectoryErrorSummary> truth;
+  std::optional<eval::LineMapErrorSummary> lines;
 };
 
 std::string Fixed(double value, int decimals) {
@@ -106,6 +113,36 @@ void PrintTruthTable(const EvalArgs& args, const eval::TrajectoryErrorSummary& s
               Fixed(summary.final_error_percent_of_path, 3).c_str());
 }
 
+void PrintLineTable(const EvalArgs& args, const eval::LineMapErrorSummary& summary) {
+  const eval::LineMapErrorOptions tolerances;
+  std::printf("line map %s: %zu segments, %s m; walls %s: %zu, %s m\n", args.lines.c_str(),
+              summary.map_segments, Fixed(summary.map_length_m, 2).c_str(), args.walls.c_str(),
+              summary.walls, Fixed(summary.wall_length_m, 2).c_str());
+  std::printf("  %-46s %8s %%\n",
+              ("coverage (wall within " + Fixed(tolerances.distance_m * 100, 0) + " cm and " +
+               Fixed(tolerances.angle_rad * 180.0 / std::numbers::pi, 0) + " deg)")
+                  .c_str(),
+              Fixed(summary.coverage * 100.0, 2).c_str());
+  std::printf("  %-46s %8s %%\n",
+              ("precision (map within " + Fixed(tolerances.distance_m * 100, 0) + " cm of a wall)")
+                  .c_str(),
+              Fixed(summary.precision * 100.0, 2).c_str());
+  std::printf("  %-46s %8s\n", "fragmentation (map segments per wall)",
+              Fixed(summary.fragmentation, 3).c_str());
+}
+
+std::string LinesJson(const EvalArgs& args, const eval::LineMapErrorSummary& summary) {
+  return "{\"file\": " + JsonString(args.lines) + ", \"walls_file\": " + JsonString(args.walls) +
+         ", \"segments\": " + std::to_string(summary.map_segments) +
+         ", \"walls\": " + std::to_string(summary.walls) +
+         ", \"map_length_m\": " + JsonNumber(summary.map_length_m) +
+         ", \"wall_length_m\": " + JsonNumber(summary.wall_length_m) +
+         ", \"coverage\": " + JsonNumber(summary.coverage) +
+         ", \"precision\": " + JsonNumber(summary.precision) +
+         ", \"fragmentation\": " + JsonNumber(summary.fragmentation) +
+         ", \"walls_matched\": " + std::to_string(summary.walls_matched) + "}";
+}
+
 std::string RelationJson(const EvalArgs& args, const eval::RelationErrorSummary& summary) {
   return "{\"file\": " + JsonString(args.relations) +
          ", \"used\": " + std::to_string(summary.relations_used) +
@@ -134,21 +171,32 @@ std::string TruthJson(const EvalArgs& args, const eval::TrajectoryErrorSummary& 
 }
 
 void PrintJson(const EvalArgs& args, const EvalReport& report) {
-  std::string json = "{\"trajectory\": " + JsonString(args.trajectory) +
-                     ", \"poses\": " + std::to_string(report.poses) +
-                     ", \"stamp_tolerance_s\": " + JsonNumber(args.stamp_tolerance_s);
+  std::string json;
+  if (!args.trajectory.empty()) {
+    json = "\"trajectory\": " + JsonString(args.trajectory) +
+           ", \"poses\": " + std::to_string(report.poses) +
+           ", \"stamp_tolerance_s\": " + JsonNumber(args.stamp_tolerance_s);
+  }
   if (report.relations) json += ", \"relations\": " + RelationJson(args, *report.relations);
   if (report.truth) json += ", \"truth\": " + TruthJson(args, *report.truth);
-  std::cout << json << "}\n";
+  if (report.lines) {
+    if (!json.empty()) json += ", ";
+    json += "\"lines\": " + LinesJson(args, *report.lines);
+  }
+  std::cout << "{" << json << "}\n";
 }
 
-// Dispatches on the references given; a later --lines/--walls map comparison adds a section here.
-void RunEval(const EvalArgs& args) {
+std::vector<geometry::Segment2> ReadSegments(const std::string& path) {
+  std::vector<geometry::Segment2> segments;
+  for (const io::LineRow& row : io::ReadLineCsv(path)) segments.push_back(row.segment);
+  return segments;
+}
+
+void EvaluateTrajectory(const EvalArgs& args, EvalReport& report) {
   if (args.relations.empty() && args.truth.empty()) {
-    throw CLI::RequiredError("--relations R or --truth T (or both)");
+    throw CLI::RequiredError("--relations R or --truth T (or both) with --trajectory");
   }
   const geometry::Trajectory estimate = io::ReadTum(args.trajectory);
-  EvalReport report;
   report.poses = estimate.size();
   if (!args.relations.empty()) {
     report.relations = eval::EvaluateRelations(estimate, io::ReadRelations(args.relations),
@@ -159,10 +207,25 @@ void RunEval(const EvalArgs& args) {
         estimate, io::ReadTum(args.truth),
         {.stamp_tolerance_s = args.stamp_tolerance_s, .align = args.align});
   }
+}
+
+// Dispatches on the inputs given: a trajectory with its references, a line map with its walls.
+void RunEval(const EvalArgs& args) {
+  if (args.trajectory.empty() && args.lines.empty()) {
+    throw CLI::RequiredError("--trajectory T or --lines L (or both)");
+  }
+  EvalReport report;
+  if (!args.trajectory.empty()) EvaluateTrajectory(args, report);
+  if (!args.lines.empty()) {
+    report.lines = eval::EvaluateLineMap(ReadSegments(args.lines), ReadSegments(args.walls));
+  }
   if (args.json) return PrintJson(args, report);
-  std::printf("trajectory %s: %zu poses\n", args.trajectory.c_str(), report.poses);
+  if (!args.trajectory.empty()) {
+    std::printf("trajectory %s: %zu poses\n", args.trajectory.c_str(), report.poses);
+  }
   if (report.relations) PrintRelationTable(args, *report.relations);
   if (report.truth) PrintTruthTable(args, *report.truth);
+  if (report.lines) PrintLineTable(args, *report.lines);
 }
 
 }  // namespace
@@ -170,13 +233,28 @@ void RunEval(const EvalArgs& args) {
 void AddEvalCommand(CLI::App& app) {
   auto args = std::make_shared<EvalArgs>();
   CLI::App* command = app.add_subcommand(
-      "eval", "Score a trajectory against ground-truth relations and/or a truth trajectory");
-  command->add_option("--trajectory", args->trajectory, "Estimated trajectory (TUM text)")
-      ->required();
-  command->add_option("--relations", args->relations,
-                      "Ground-truth relations (Freiburg .relations): Kuemmerle relation errors");
-  CLI::Option* truth = command->add_option(
-      "--truth", args->truth, "Truth trajectory (TUM text): absolute errors, final-position %");
+      "eval",
+      "Score a trajectory against ground-truth relations and/or a truth trajectory, and/or a "
+      "line map against the walls the laser saw");
+  CLI::Option* trajectory =
+      command->add_option("--trajectory", args->trajectory, "Estimated trajectory (TUM text)");
+  command
+      ->add_option("--relations", args->relations,
+                   "Ground-truth relations (Freiburg .relations): Kuemmerle relation errors")
+      ->needs(trajectory);
+  CLI::Option* truth =
+      command
+          ->add_option("--truth", args->truth,
+                       "Truth trajectory (TUM text): absolute errors, final-position %")
+          ->needs(trajectory);
+  CLI::Option* walls = command->add_option(
+      "--walls", args->walls, "True walls (line CSV, e.g. a simulated mission's observed.csv)");
+  CLI::Option* lines =
+      command
+          ->add_option("--lines", args->lines,
+                       "Line map (line CSV): coverage, precision, fragmentation against --walls")
+          ->needs(walls);
+  walls->needs(lines);
   command
       ->add_flag("--align", args->align,
                  "Rigidly align the estimate to the truth (least squares) before comparing")

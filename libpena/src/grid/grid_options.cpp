@@ -1,0 +1,45 @@
+#include "pena/grid/grid_options.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace pena::grid {
+namespace {
+
+void Require(bool ok, const char* field, const char* rule, double value) {
+  if (ok) return;
+  std::ostringstream message;
+  message << "grid." << field << " must be " << rule << ", got " << value;
+  throw std::invalid_argument(message.str());
+}
+
+}  // namespace
+
+void ValidateGridOptions(const GridOptions& options) {
+  // !(x > 0) rather than x <= 0 so NaN is refused too.
+  Require(std::isfinite(options.resolution_m) && options.resolution_m > 0.0, "resolution_m",
+          "finite and > 0 m", options.resolution_m);
+  Require(std::isfinite(options.hit_log_odds) && options.hit_log_odds > 0.0, "hit_log_odds",
+          "finite and > 0 (log-odds)", options.hit_log_odds);
+  Require(std::isfinite(options.miss_log_odds) && options.miss_log_odds < 0.0, "miss_log_odds",
+          "finite and < 0 (log-odds)", options.miss_log_odds);
+  Require(std::isfinite(options.min_log_odds) && options.min_log_odds < 0.0, "min_log_odds",
+          "finite and < 0 (log-odds)", options.min_log_odds);
+  Require(std::isfinite(options.max_log_odds) && options.max_log_odds > 0.0, "max_log_odds",
+          "finite and > 0 (log-odds)", options.max_log_odds);
+  Require(std::isfinite(options.no_return_clear_m) && options.no_return_clear_m >= 0.0,
+          "no_return_clear_m", "finite and >= 0 m", options.no_return_clear_m);
+  Require(std::isfinite(options.max_range_m) && options.max_range_m > 0.0, "max_range_m",
+          "finite and > 0 m", options.max_range_m);
+  Require(std::isfinite(options.max_size_m) && options.max_size_m >= options.resolution_m,
+          "max_size_m", "finite and >= resolution_m (m)", options.max_size_m);
+  // Cells are indexed with int; keep the largest grid well inside it.
+  Require(options.max_size_m / options.resolution_m <= 1.0e5, "max_size_m",
+          "at most 100000 cells (max_size_m / resolution_m)", options.max_size_m);
+}
+
+double ProbabilityFromLogOdds(double log_odds) { return 1.0 - 1.0 / (1.0 + std::exp(log_odds)); }
+
+}  // namespace pena::grid
