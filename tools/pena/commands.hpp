@@ -10,5 +10,6 @@ void AddExportCommand(CLI::App& app);    // pena export --log LOG --carmen|--csm
 void AddEvalCommand(CLI::App& app);      // pena eval --trajectory T (--relations R | --truth T)
 void AddSimulateCommand(CLI::App& app);  // pena simulate --scenario NAME|FILE --seed N --out DIR
 void AddOdometryCommand(CLI::App& app);  // pena odometry --log LOG --out DIR
+void AddMapCommand(CLI::App& app);       // pena map --log LOG [--trajectory T] --out DIR
 
 }  // namespace pena::cli

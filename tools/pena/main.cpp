@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   pena::cli::AddEvalCommand(app);
   pena::cli::AddExportCommand(app);
   pena::cli::AddOdometryCommand(app);
+  pena::cli::AddMapCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -1,0 +1,73 @@
+// `pena map` as the issue states it: every output file from a simulated mission with true poses,
+// a line map `pena eval` can score, a radish-corrected log mapped on its logged poses, and a
+// one-line error for a bad --trajectory. Map quality is measured in docs/line-extraction.md.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "run_pena.hpp"
+
+namespace pena::testing {
+namespace {
+
+// The number after `"key": ` in a JSON text; NaN when absent.
+double JsonNumber(const std::string& json, const std::string& key) {
+  const std::size_t at = json.find("\"" + key + "\": ");
+  if (at == std::string::npos) return std::nan("");
+  return std::stod(json.substr(at + key.size() + 4));
+}
+
+void ExpectMapFiles(const std::filesystem::path& dir) {
+  for (const char* name : {"lines.csv", "lines.svg", "grid.pgm", "grid.yaml", "map.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
+    EXPECT_GT(ReadBytes(dir / name).size(), 0u) << name;
+  }
+}
+
+TEST(CliMap, SimulatedMissionWithTruePosesGivesAScorableLineMap) {
+  const auto sim = FreshDir("map_sim");
+  const PenaRun simulate = RunPena("simulate --scenario office --seed 4 --out " + sim.string());
+  ASSERT_EQ(simulate.exit_code, 0) << simulate.err;
+  const auto out = FreshDir("map_sim_out");
+  const PenaRun run = RunPena("map --log " + (sim / "ff1" / "sensors.penalog").string() +
+                              " --trajectory " + (sim / "ff1" / "truth.tum").string() +
+                              " --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  ExpectMapFiles(out);
+  EXPECT_NE(run.out.find("0 skipped"), std::string::npos) << run.out;  // truth has every stamp
+  EXPECT_EQ(ReadBytes(out / "lines.csv").rfind("id,x1,y1,x2,y2,support_cells,rms_error_m\n", 0),
+            0u);
+  const PenaRun eval = RunPena("eval --lines " + (out / "lines.csv").string() + " --walls " +
+                               (sim / "observed.csv").string() + " --json");
+  ASSERT_EQ(eval.exit_code, 0) << eval.err;
+  EXPECT_GT(JsonNumber(eval.out, "coverage"), 0.5) << eval.out;
+  EXPECT_GT(JsonNumber(eval.out, "precision"), 0.5) << eval.out;
+}
+
+TEST(CliMap, RadishCorrectedLogMapsOnItsLoggedPoses) {
+  const auto log = Dataset("radish-corrected/aces-corrected.log.gz");
+  if (!std::filesystem::exists(log)) GTEST_SKIP() << log << " not present";
+  const auto out = FreshDir("map_aces");
+  const PenaRun run = RunPena("map --quiet --log " + log.string() + " --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  ExpectMapFiles(out);
+  EXPECT_NE(run.out.find("poses: logged poses"), std::string::npos) << run.out;
+  const std::string csv = ReadBytes(out / "lines.csv");
+  EXPECT_GT(std::count(csv.begin(), csv.end(), '\n'), 100) << "expected a building's walls";
+}
+
+TEST(CliMap, MissingTrajectoryFileGivesOneLineError) {
+  const auto out = FreshDir("map_bad");
+  const PenaRun run =
+      RunPena("map --log " + Dataset("radish-corrected/aces-corrected.log.gz").string() +
+              " --trajectory " + (out / "missing.tum").string() + " --out " + out.string());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_EQ(run.err.rfind("pena: error: ", 0), 0u) << run.err;
+  EXPECT_NE(run.err.find("missing.tum"), std::string::npos) << run.err;
+}
+
+}  // namespace
+}  // namespace pena::testing
