@@ -3,7 +3,7 @@
 # their logs, ground truth and pictures under demo-out/ (or the directory given as $1).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+PENA_TARGETS=pena bash scripts/setup.sh
 build_dir=${PENA_BUILD_DIR:-build}
 out=${1:-demo-out}
 export FASTRTPS_DEFAULT_PROFILES_FILE="$PWD/deploy/dds/pena-loopback.xml"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs PeNa's Debian 12 build dependencies (only those missing) and builds into build/.
 # Idempotent: a second run installs nothing and rebuilds only what changed.
-# Environment: PENA_BUILD_DIR (default build), PENA_WERROR (ON in CI), PENA_JOBS (default nproc).
+# Environment: PENA_BUILD_DIR (default build), PENA_WERROR (ON in CI), PENA_JOBS (default nproc),
+# PENA_TARGETS (default: everything; the demo builds only what it runs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -31,9 +32,13 @@ if ((${#missing[@]})); then
 fi
 
 build_dir=${PENA_BUILD_DIR:-build}
-werror=${PENA_WERROR:-OFF}
-if [[ "${CI:-}" == "true" ]]; then werror=ON; fi
 jobs=${PENA_JOBS:-$(nproc)}
+# Pass -DPENA_WERROR only when asked: flipping a cached option would rebuild everything.
+config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
+if [[ "${CI:-}" == "true" ]]; then config+=(-DPENA_WERROR=ON); fi
+if [[ -n "${PENA_WERROR:-}" ]]; then config+=(-DPENA_WERROR="$PENA_WERROR"); fi
 
-cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPENA_WERROR="$werror" >/dev/null
-cmake --build "$build_dir" -j "$jobs"
+cmake -S . -B "$build_dir" "${config[@]}" >/dev/null
+targets=()
+for target in ${PENA_TARGETS:-}; do targets+=(--target "$target"); done
+cmake --build "$build_dir" -j "$jobs" "${targets[@]}"
