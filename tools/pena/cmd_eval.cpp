@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_support.hpp"
 #include "commands.hpp"
 #include "pena/eval/line_map_error.hpp"
 #include "pena/eval/relation_error.hpp"
@@ -39,29 +40,6 @@ struct EvalReport {
   std::optional<eval::TrajectoryErrorSummary> truth;
   std::optional<eval::LineMapErrorSummary> lines;
 };
-
-std::string Fixed(double value, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
-  return buffer;
-}
-
-std::string JsonString(const std::string& text) {
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      quoted += '\\';
-      quoted += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof(escaped), "\\u%04x", static_cast<unsigned>(c));
-      quoted += escaped;
-    } else {
-      quoted += c;
-    }
-  }
-  return quoted + "\"";
-}
 
 // Full double precision: JSON is for scripts, which round for themselves.
 std::string JsonNumber(double value) {

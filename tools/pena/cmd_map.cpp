@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_support.hpp"
 #include "commands.hpp"
 #include "pena/grid/occupancy_grid.hpp"
 #include "pena/io/line_csv.hpp"
@@ -31,8 +32,6 @@
 namespace pena::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 // A TUM pose matches a scan when their stamps differ by at most this (TUM keeps 6 decimals).
 constexpr double kStampTolerance_s = 1e-3;
 
@@ -44,16 +43,6 @@ struct MapArgs {
   bool quiet = false;
   io::ReadOptions read;
 };
-
-std::string Fixed(double value, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
-  return buffer;
-}
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The trajectory pose within kStampTolerance_s of `stamp_s`, if any (trajectory sorted by stamp).
 std::optional<geometry::Pose2> PoseAt(const geometry::Trajectory& trajectory, double stamp_s) {
@@ -73,29 +62,6 @@ std::optional<geometry::Pose2> PoseAt(const geometry::Trajectory& trajectory, do
   return best;
 }
 
-// One stderr line, rewritten in place on a terminal, at most every 2 s.
-class ProgressLine {
- public:
-  explicit ProgressLine(bool enabled) : enabled_(enabled), terminal_(isatty(STDERR_FILENO) == 1) {}
-  void Update(long scans, double wall_s) {
-    if (!enabled_ || wall_s < last_wall_s_ + 2.0) return;
-    last_wall_s_ = wall_s;
-    shown_ = true;
-    std::fprintf(stderr, "%spena map: %ld scans inserted, %s s%s", terminal_ ? "\r" : "", scans,
-                 Fixed(wall_s, 1).c_str(), terminal_ ? "" : "\n");
-    std::fflush(stderr);
-  }
-  ~ProgressLine() {
-    if (shown_ && terminal_) std::fputc('\n', stderr);
-  }
-
- private:
-  bool enabled_;
-  bool terminal_;
-  bool shown_ = false;
-  double last_wall_s_ = 0.0;
-};
-
 // What the pass over the log produced.
 struct MapRun {
   explicit MapRun(const grid::GridOptions& options) : grid(options) {}
@@ -107,21 +73,6 @@ struct MapRun {
   long refused = 0;  // Insert said no: pose not finite or grid too large
   double wall_s = 0.0;
 };
-
-// Where the odometry chain starts: a native log's first ground truth (the mission's known start),
-// else the first scan's wheel-odometry pose, else the identity (as in `pena odometry`).
-geometry::Pose2 ChainStart(const std::vector<sensors::SensorRecord>& read_ahead,
-                           const io::LogSource& source) {
-  for (const sensors::SensorRecord& record : read_ahead) {
-    if (const auto* truth = std::get_if<sensors::GroundTruth>(&record)) {
-      if (source.description().format == "pena-log") return truth->world_from_body;
-    }
-    if (const auto* scan = std::get_if<sensors::LaserScan>(&record)) {
-      return scan->odometry_pose.value_or(geometry::Pose2{});
-    }
-  }
-  return {};
-}
 
 // Feeds records to the grid with poses from the trajectory, the logged poses or the odometry.
 class PoseFeeder {
@@ -149,7 +100,11 @@ class PoseFeeder {
     read_ahead.clear();
     while (const auto record = source_.Next()) {
       Feed(*record);
-      progress.Update(run_.used, SecondsSince(started));
+      const double wall_s = SecondsSince(started);
+      if (progress.Due(wall_s)) {
+        progress.Show(wall_s, "pena map: " + std::to_string(run_.used) + " scans inserted, " +
+                                  Fixed(wall_s, 1) + " s");
+      }
     }
     run_.wall_s = SecondsSince(started);
   }
@@ -159,7 +114,7 @@ class PoseFeeder {
     const double stamp_s = read_ahead.empty() ? 0.0 : sensors::StampOf(read_ahead.front());
     const sensors::EntityKind kind =
         source_.description().kind.value_or(sensors::EntityKind::kRobot);
-    chain_.emplace(odometry::LaserOdometryOptions{}, kind, ChainStart(read_ahead, source_),
+    chain_.emplace(odometry::LaserOdometryOptions{}, kind, StartPoseOf(read_ahead, source_).world_from_body,
                    stamp_s);
   }
 

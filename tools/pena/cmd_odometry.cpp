@@ -19,16 +19,16 @@
 #include <string>
 #include <vector>
 
+#include "cli_support.hpp"
 #include "commands.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/odometry/laser_odometry.hpp"
+#include "pena/scan_matching/point_set.hpp"
 #include "pena/viz/trajectory_picture.hpp"
 
 namespace pena::cli {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 struct OdometryArgs {
   std::string log;
@@ -52,12 +52,6 @@ const std::map<std::string, odometry::MotionPrior> kPriors = {
     {"stride-only", odometry::MotionPrior::kStrideOnly},
     {"odometry", odometry::MotionPrior::kOdometry},
     {"none", odometry::MotionPrior::kNone}};
-
-std::string Fixed(double value, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
-  return buffer;
-}
 
 double Percent(long part, long whole) {
   return whole == 0 ? 0.0 : 100.0 * static_cast<double>(part) / static_cast<double>(whole);
@@ -97,56 +91,17 @@ Start FindStart(io::LogSource& source, const std::optional<geometry::Pose2>& sta
   while (auto record = source.Next()) {
     start.read_ahead.push_back(std::move(*record));
     const sensors::SensorRecord& last = start.read_ahead.back();
-    if (const auto* truth = std::get_if<sensors::GroundTruth>(&last)) {
-      if (source.description().format == "pena-log") {
-        start.world_from_body = truth->world_from_body;
-        start.source = "ground truth";
-      }
-      break;
-    }
-    if (const auto* scan = std::get_if<sensors::LaserScan>(&last)) {
-      if (scan->odometry_pose) {
-        start.world_from_body = *scan->odometry_pose;
-        start.source = "odometry";
-      }
+    if (std::holds_alternative<sensors::GroundTruth>(last) ||
+        std::holds_alternative<sensors::LaserScan>(last)) {
       break;
     }
   }
-  if (start_override) {
-    start.world_from_body = *start_override;
-    start.source = "--start";
-  }
-  if (start.source.empty()) start.source = "identity";
+  const StartPose rule = StartPoseOf(start.read_ahead, source);
+  start.world_from_body = start_override.value_or(rule.world_from_body);
+  start.source = start_override ? "--start" : rule.source;
   if (!start.read_ahead.empty()) start.stamp_s = sensors::StampOf(start.read_ahead.front());
   return start;
 }
-
-// One stderr line, rewritten in place on a terminal, at most every 2 s once 500 scans are done.
-class ProgressLine {
- public:
-  explicit ProgressLine(bool enabled) : enabled_(enabled), terminal_(isatty(STDERR_FILENO) == 1) {}
-
-  void Update(long scans, double log_elapsed_s, double wall_s) {
-    if (!enabled_ || scans <= 500 || wall_s < last_wall_s_ + 2.0) return;
-    last_wall_s_ = wall_s;
-    shown_ = true;
-    std::fprintf(stderr, "%spena odometry: %ld scans, log time %s s, %s x real time%s",
-                 terminal_ ? "\r" : "", scans, Fixed(log_elapsed_s, 1).c_str(),
-                 Fixed(wall_s > 0.0 ? log_elapsed_s / wall_s : 0.0, 1).c_str(),
-                 terminal_ ? "" : "\n");
-    std::fflush(stderr);
-  }
-  // Ends the rewritten line so later output (or an error) starts on its own line.
-  ~ProgressLine() {
-    if (shown_ && terminal_) std::fputc('\n', stderr);
-  }
-
- private:
-  bool enabled_;
-  bool terminal_;
-  bool shown_ = false;
-  double last_wall_s_ = 0.0;
-};
 
 // Everything the run produced, for the output files.
 struct RunResult {
@@ -162,20 +117,6 @@ struct RunResult {
   double wall_s = 0.0;  // reading the log and running the odometry
 };
 
-// The scan's returns placed at the estimated body pose (the laser sits at the body origin).
-std::vector<Eigen::Vector2d> WorldPoints(const sensors::LaserScan& scan,
-                                         const geometry::Pose2& world_from_body) {
-  std::vector<Eigen::Vector2d> points;
-  points.reserve(scan.ranges_m.size());
-  for (std::size_t b = 0; b < scan.ranges_m.size(); ++b) {
-    if (!scan.IsReturn(b)) continue;
-    const double r = scan.ranges_m[b];
-    const double a = scan.BeamAngle(b);
-    points.push_back(geometry::TransformPoint(world_from_body, {r * std::cos(a), r * std::sin(a)}));
-  }
-  return points;
-}
-
 void Record(const sensors::SensorRecord& record, odometry::LaserOdometry& chain, RunResult& run) {
   ++run.records;
   run.last_stamp_s = std::max(run.last_stamp_s, sensors::StampOf(record));
@@ -183,7 +124,9 @@ void Record(const sensors::SensorRecord& record, odometry::LaserOdometry& chain,
   if (!estimate) return;
   const auto* scan = std::get_if<sensors::LaserScan>(&record);
   const geometry::Pose2& pose = estimate->world_from_body;
-  run.picture.scans_m.push_back(scan ? WorldPoints(*scan, pose) : std::vector<Eigen::Vector2d>{});
+  run.picture.scans_m.push_back(
+      scan ? scan_matching::TransformPoints(pose, scan_matching::ScanToPoints(*scan, 0.0))
+           : std::vector<Eigen::Vector2d>{});
   run.picture.estimate.push_back({estimate->stamp_s, pose});
   if (estimate->reference_changed) run.picture.keyframes_m.emplace_back(pose.x_m, pose.y_m);
   if (estimate->status == odometry::MatchStatus::kFailed)
@@ -211,12 +154,16 @@ RunResult RunChain(io::LogSource& source, const OdometryArgs& args,
   start.read_ahead.clear();
   while (const auto record = source.Next()) {
     Record(*record, chain, run);
-    const std::chrono::duration<double> wall = Clock::now() - started;
-    progress.Update(static_cast<long>(run.estimates.size()), run.last_stamp_s - run.first_stamp_s,
-                    wall.count());
+    const double wall_s = SecondsSince(started);
+    const double log_s = run.last_stamp_s - run.first_stamp_s;
+    if (run.estimates.size() > 500 && progress.Due(wall_s)) {
+      progress.Show(wall_s, "pena odometry: " + std::to_string(run.estimates.size()) +
+                                " scans, log time " + Fixed(log_s, 1) + " s, " +
+                                Fixed(wall_s > 0.0 ? log_s / wall_s : 0.0, 1) + " x real time");
+    }
   }
   run.counts = chain.counts();
-  run.wall_s = std::chrono::duration<double>(Clock::now() - started).count();
+  run.wall_s = SecondsSince(started);
   return run;
 }
 
@@ -235,15 +182,6 @@ void WriteCsv(const std::filesystem::path& path, const RunResult& run) {
     out << line;
   }
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
-}
-
-std::string JsonString(const std::string& text) {
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') quoted += '\\';
-    if (static_cast<unsigned char>(c) >= 0x20) quoted += c;
-  }
-  return quoted + "\"";
 }
 
 double Speed(const RunResult& run) {

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cli_support.hpp"
 #include "commands.hpp"
 #include "pena/sim/mission_picture.hpp"
 #include "pena/sim/mission_writer.hpp"
@@ -49,12 +50,6 @@ ScenarioSource LoadScenarioSource(const std::string& name_or_file) {
   std::ostringstream text;
   text << file.rdbuf();
   return {text.str(), name_or_file};
-}
-
-std::string Fixed(double value, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
-  return buffer;
 }
 
 double Percent(std::size_t part, std::size_t whole) {

@@ -1,0 +1,66 @@
+#include "cli_support.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace pena::cli {
+
+std::string Fixed(double value, int decimals) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
+  return buffer;
+}
+
+std::string JsonString(const std::string& text) {
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      quoted += '\\';
+      quoted += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof(escaped), "\\u%04x", static_cast<unsigned>(c));
+      quoted += escaped;
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "\"";
+}
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+ProgressLine::ProgressLine(bool enabled)
+    : enabled_(enabled), terminal_(isatty(STDERR_FILENO) == 1) {}
+
+ProgressLine::~ProgressLine() {
+  if (shown_ && terminal_) std::fputc('\n', stderr);
+}
+
+bool ProgressLine::Due(double wall_s) const { return enabled_ && wall_s >= last_wall_s_ + 2.0; }
+
+void ProgressLine::Show(double wall_s, const std::string& text) {
+  last_wall_s_ = wall_s;
+  shown_ = true;
+  std::fprintf(stderr, "%s%s%s", terminal_ ? "\r" : "", text.c_str(), terminal_ ? "" : "\n");
+  std::fflush(stderr);
+}
+
+StartPose StartPoseOf(const std::vector<sensors::SensorRecord>& read_ahead,
+                      const io::LogSource& source) {
+  for (const sensors::SensorRecord& record : read_ahead) {
+    if (const auto* truth = std::get_if<sensors::GroundTruth>(&record)) {
+      if (source.description().format == "pena-log") return {truth->world_from_body, "ground truth"};
+    }
+    if (const auto* scan = std::get_if<sensors::LaserScan>(&record)) {
+      if (scan->odometry_pose) return {*scan->odometry_pose, "odometry"};
+      break;
+    }
+  }
+  return {{}, "identity"};
+}
+
+}  // namespace pena::cli

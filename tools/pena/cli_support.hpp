@@ -1,0 +1,56 @@
+#pragma once
+// Small pieces every subcommand shares: number and JSON formatting, wall-clock timing, the
+// progress line on long logs, and the rule for where a run over a log starts.
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "pena/geometry/pose2.hpp"
+#include "pena/io/log_source.hpp"
+#include "pena/sensors/record.hpp"
+
+namespace pena::cli {
+
+using Clock = std::chrono::steady_clock;
+
+// `value` with `decimals` digits after the point.
+std::string Fixed(double value, int decimals);
+
+// `text` as a JSON string literal (quotes, backslashes and control characters escaped).
+std::string JsonString(const std::string& text);
+
+// Wall-clock seconds since `start`.
+double SecondsSince(Clock::time_point start);
+
+// One stderr line, rewritten in place on a terminal (a plain line otherwise), at most every 2 s.
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool enabled);
+  // Ends the rewritten line so later output (or an error) starts on its own line.
+  ~ProgressLine();
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+  // True when a line is due at `wall_s` seconds into the run.
+  bool Due(double wall_s) const;
+  void Show(double wall_s, const std::string& text);
+
+ private:
+  bool enabled_;
+  bool terminal_;
+  bool shown_ = false;
+  double last_wall_s_ = 0.0;
+};
+
+// Where a run over a log starts when the user gave no start: a native log's ground truth if it
+// comes before the first scan (the mission's known start; truth is used for nothing else), else
+// the first scan's odometry pose, else the identity. `read_ahead` holds the log's first records.
+struct StartPose {
+  geometry::Pose2 world_from_body;
+  std::string source;  // "ground truth", "odometry", "identity"
+};
+StartPose StartPoseOf(const std::vector<sensors::SensorRecord>& read_ahead,
+                      const io::LogSource& source);
+
+}  // namespace pena::cli
