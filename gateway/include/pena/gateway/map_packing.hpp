@@ -1,0 +1,27 @@
+#pragma once
+// The gateway's compact encoding of line-map deltas and snapshots (docs/gateway.md): endpoints
+// in whole millimetres, each segment's id and start delta-coded against the previous segment, its
+// end against its own start, all as zig-zag varints; provenance strings once per message in a
+// table. Exact for what a LineMap produces, so the far side's map equals the near side's.
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "pena/line_map/map_delta.hpp"
+
+namespace pena::gateway {
+
+// Packs the changed segments of a delta (versions travel in MapUpdate). Throws
+// std::invalid_argument for a value not on the map's quanta (only LineMap output is exact).
+std::string PackDelta(const line_map::MapDelta& delta);
+// Unpacks PackDelta bytes into `delta` (versions set by the caller); nullopt and `error` set
+// (with the byte offset) for malformed bytes.
+std::optional<line_map::MapDelta> UnpackDelta(std::string_view bytes, std::string* error);
+
+// Packs next_id and the segments of a snapshot; throws like PackDelta.
+std::string PackSnapshot(const line_map::MapSnapshot& snapshot);
+// Unpacks PackSnapshot bytes (version set by the caller); nullopt and `error` for bad bytes.
+std::optional<line_map::MapSnapshot> UnpackSnapshot(std::string_view bytes, std::string* error);
+
+}  // namespace pena::gateway

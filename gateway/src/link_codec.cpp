@@ -1,0 +1,160 @@
+#include "pena/gateway/link_codec.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "pena/gateway/map_packing.hpp"
+
+namespace pena::gateway {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+
+std::int32_t ClampInt32(double value) {
+  const double limit = std::numeric_limits<std::int32_t>::max();
+  return static_cast<std::int32_t>(std::llround(std::clamp(value, -limit, limit)));
+}
+
+std::int32_t StampOffset(double stamp_s, std::uint64_t base_ms) {
+  return ClampInt32(static_cast<double>(StampMs(stamp_s)) - static_cast<double>(base_ms));
+}
+
+double StampFrom(std::int32_t offset_ms, std::uint64_t base_ms) {
+  return (static_cast<double>(base_ms) + offset_ms) / 1000.0;
+}
+
+// Heading in [0, 3600) tenths of a degree.
+std::uint32_t HeadingDdeg(double theta_rad) {
+  const long long ddeg = std::llround(geometry::NormalizeAngle(theta_rad) * kRadToDeg * 10.0);
+  return static_cast<std::uint32_t>(((ddeg % 3600) + 3600) % 3600);
+}
+
+void PutPose(const PoseUpdate& pose, std::uint64_t base_ms, link::Pose* out) {
+  out->set_entity(pose.entity);
+  out->set_x_cm(ClampInt32(pose.world_from_body.x_m * 100.0));
+  out->set_y_cm(ClampInt32(pose.world_from_body.y_m * 100.0));
+  out->set_heading_ddeg(HeadingDdeg(pose.world_from_body.theta_rad));
+  out->set_stamp_offset_ms(StampOffset(pose.stamp_s, base_ms));
+}
+
+void PutAnnotation(const Annotation& a, std::uint64_t base_ms, link::Annotation* out) {
+  out->set_alarm(a.alarm);
+  out->set_entity(a.entity);
+  out->set_id(a.id);
+  out->set_x_cm(ClampInt32(a.x_m * 100.0));
+  out->set_y_cm(ClampInt32(a.y_m * 100.0));
+  out->set_stamp_offset_ms(StampOffset(a.stamp_s, base_ms));
+  out->set_text(a.text);
+}
+
+void PutCorrection(const Correction& c, std::uint64_t base_ms, link::Correction* out) {
+  out->set_entity(c.entity);
+  out->set_x_mm(ClampInt32(c.world_from_local.x_m * 1000.0));
+  out->set_y_mm(ClampInt32(c.world_from_local.y_m * 1000.0));
+  out->set_heading_cdeg(ClampInt32(geometry::NormalizeAngle(c.world_from_local.theta_rad) *
+                                   kRadToDeg * 100.0));
+  out->set_version(c.version);
+  out->set_stamp_offset_ms(StampOffset(c.stamp_s, base_ms));
+}
+
+void PutMap(const MapChange& change, link::MapUpdate* out) {
+  out->set_map_id(change.map_id);
+  if (const auto* delta = std::get_if<line_map::MapDelta>(&change.change)) {
+    out->set_from_version(delta->from_version);
+    out->set_to_version(delta->to_version);
+    out->set_packed(PackDelta(*delta));
+    return;
+  }
+  const auto& snapshot = std::get<line_map::MapSnapshot>(change.change);
+  out->set_to_version(snapshot.version);
+  out->set_snapshot(true);
+  out->set_reset(change.reset);
+  out->set_packed(PackSnapshot(snapshot));
+}
+
+std::optional<DomainItem> Fail(std::string* error, const std::string& what) {
+  if (error != nullptr) *error = what;
+  return std::nullopt;
+}
+
+std::optional<DomainItem> GetMap(const link::MapUpdate& m, std::string* error) {
+  std::string why;
+  MapChange change{m.map_id(), line_map::MapDelta{}, m.reset()};
+  if (m.map_id().empty()) return Fail(error, "map update: empty map_id");
+  if (m.snapshot()) {
+    std::optional<line_map::MapSnapshot> snapshot = UnpackSnapshot(m.packed(), &why);
+    if (!snapshot) return Fail(error, "map update " + m.map_id() + ": snapshot " + why);
+    snapshot->version = m.to_version();
+    std::int64_t previous = 0;
+    for (const auto& segment : snapshot->segments) {
+      if (segment.id <= previous) return Fail(error, "map snapshot " + m.map_id() + ": ids not increasing");
+      previous = segment.id;
+    }
+    change.change = std::move(*snapshot);
+    return change;
+  }
+  if (m.reset() || m.to_version() != m.from_version() + 1) {
+    return Fail(error, "map update " + m.map_id() + ": delta " + std::to_string(m.from_version()) +
+                           " -> " + std::to_string(m.to_version()) + " is not one step");
+  }
+  std::optional<line_map::MapDelta> delta = UnpackDelta(m.packed(), &why);
+  if (!delta) return Fail(error, "map update " + m.map_id() + ": delta " + why);
+  delta->from_version = m.from_version();
+  delta->to_version = m.to_version();
+  change.change = std::move(*delta);
+  return change;
+}
+
+}  // namespace
+
+std::uint64_t StampMs(double stamp_s) {
+  if (!(stamp_s > 0.0)) return 0;
+  return static_cast<std::uint64_t>(std::llround(std::min(stamp_s, 1e15) * 1000.0));
+}
+
+void ToProto(const DomainItem& item, std::uint64_t base_stamp_ms, link::Item* out) {
+  if (const auto* pose = std::get_if<PoseUpdate>(&item)) {
+    PutPose(*pose, base_stamp_ms, out->mutable_pose());
+  } else if (const auto* annotation = std::get_if<Annotation>(&item)) {
+    PutAnnotation(*annotation, base_stamp_ms, out->mutable_annotation());
+  } else if (const auto* correction = std::get_if<Correction>(&item)) {
+    PutCorrection(*correction, base_stamp_ms, out->mutable_correction());
+  } else {
+    PutMap(std::get<MapChange>(item), out->mutable_map());
+  }
+}
+
+std::optional<DomainItem> FromProto(const link::Item& item, std::uint64_t base_ms,
+                                    std::string* error) {
+  switch (item.body_case()) {
+    case link::Item::kPose: {
+      const link::Pose& p = item.pose();
+      if (p.heading_ddeg() >= 3600) return Fail(error, "pose: heading_ddeg >= 3600");
+      const double theta = geometry::NormalizeAngle(p.heading_ddeg() / 10.0 / kRadToDeg);
+      return PoseUpdate{p.entity(), {p.x_cm() / 100.0, p.y_cm() / 100.0, theta},
+                        StampFrom(p.stamp_offset_ms(), base_ms)};
+    }
+    case link::Item::kAnnotation: {
+      const link::Annotation& a = item.annotation();
+      return Annotation{a.alarm(), a.entity(), a.id(), a.x_cm() / 100.0, a.y_cm() / 100.0,
+                        StampFrom(a.stamp_offset_ms(), base_ms), a.text()};
+    }
+    case link::Item::kCorrection: {
+      const link::Correction& c = item.correction();
+      if (c.heading_cdeg() > 18000 || c.heading_cdeg() < -18000) {
+        return Fail(error, "correction: heading_cdeg out of [-18000, 18000]");
+      }
+      const double theta = geometry::NormalizeAngle(c.heading_cdeg() / 100.0 / kRadToDeg);
+      return Correction{c.entity(), {c.x_mm() / 1000.0, c.y_mm() / 1000.0, theta}, c.version(),
+                        StampFrom(c.stamp_offset_ms(), base_ms)};
+    }
+    case link::Item::kMap:
+      return GetMap(item.map(), error);
+    default:
+      return Fail(error, "item without a domain body");
+  }
+}
+
+}  // namespace pena::gateway

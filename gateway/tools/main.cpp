@@ -1,0 +1,92 @@
+// pena-gateway: bridges a local domain across a bandwidth-limited link (docs/gateway.md).
+// Today's domains: a synthetic team (--team N) or receive-only; the DDS domain plugs in later.
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+
+#include "link_runner.hpp"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+void OnSignal(int /*signal*/) { g_stop = true; }
+
+// "host:port" into its parts; throws CLI::ValidationError naming the option.
+void SplitEndpoint(const std::string& text, const std::string& option, std::string* host,
+                   std::uint16_t* port) {
+  const std::size_t colon = text.rfind(':');
+  if (colon == std::string::npos) throw CLI::ValidationError(option, "expected HOST:PORT, got " + text);
+  *host = text.substr(0, colon);
+  const long value = std::strtol(text.c_str() + colon + 1, nullptr, 10);
+  if (value < 0 || value > 65535) throw CLI::ValidationError(option, "port out of range: " + text);
+  *port = static_cast<std::uint16_t>(value);
+}
+
+// Registers every command-line option; the endpoints and outages are parsed after.
+void AddOptions(CLI::App& app, pena::gateway::RunnerOptions& options, std::string& bind,
+                std::string& peer, bool& no_compress, std::vector<std::string>& outages) {
+  app.add_option("--bind", bind, "local HOST:PORT (UDP)")->capture_default_str();
+  app.add_option("--peer", peer, "the other gateway's HOST:PORT")->capture_default_str();
+  app.add_option("--budget-bit-s", options.link.budget_bit_s, "bit budget (keep below the link rate)")->capture_default_str();
+  app.add_option("--burst-bits", options.link.burst_bits, "token bucket capacity")->capture_default_str();
+  app.add_option("--packet-bytes", options.link.packet_bytes, "target envelope size")->capture_default_str();
+  app.add_option("--overhead-bytes", options.link.overhead_bytes, "per-frame bytes below the link frame")->capture_default_str();
+  app.add_flag("--no-compress", no_compress, "never deflate frame payloads");
+  app.add_flag("--tcp", options.tcp, "TCP instead of UDP (transport measurement)");
+  app.add_flag("--tcp-listen", options.tcp_listen, "with --tcp: accept the peer's connection");
+  app.add_option("--retransmit-timeout-s", options.link.scheduler.retransmit_timeout_s,
+                 "first resend of an unacknowledged item")->capture_default_str();
+  app.add_option("--max-retransmit-timeout-s", options.link.scheduler.max_retransmit_timeout_s,
+                 "resend timeout cap")->capture_default_str();
+  app.add_option("--team", options.team_entities, "publish a synthetic team of N entities (0: receive only)");
+  app.add_option("--map-until-s", options.team.map_until_s, "synthetic maps stop changing after this (s)");
+  app.add_option("--seed", options.team.seed, "synthetic team seed")->capture_default_str();
+  app.add_option("--duration-s", options.duration_s, "run time (s)")->capture_default_str();
+  app.add_option("--emulate-delay-s", options.emulate_delay_s, "delay added to received frames (no netem)");
+  app.add_option("--emulate-loss", options.emulate_loss, "probability of dropping a received frame");
+  app.add_option("--emulate-outage", outages, "START:END seconds after start: drop everything received");
+  app.add_option("--stats", options.stats_path, "write the JSON summary here");
+  app.add_option("--name", options.name, "name in logs and the summary");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"pena-gateway: carries alarms, poses, corrections and line maps across a slow link"};
+  pena::gateway::RunnerOptions options;
+  std::string bind = "127.0.0.1:7701";
+  std::string peer = "127.0.0.1:7702";
+  bool no_compress = false;
+  std::vector<std::string> outages;
+  AddOptions(app, options, bind, peer, no_compress, outages);
+  try {
+    app.parse(argc, argv);
+    SplitEndpoint(bind, "--bind", &options.udp.bind_address, &options.udp.bind_port);
+    SplitEndpoint(peer, "--peer", &options.udp.peer_address, &options.udp.peer_port);
+    for (const std::string& outage : outages) {
+      double from = 0.0;
+      double to = 0.0;
+      if (std::sscanf(outage.c_str(), "%lf:%lf", &from, &to) != 2 || !(to > from)) {
+        throw CLI::ValidationError("--emulate-outage", "expected START:END with END > START, got " + outage);
+      }
+      options.emulate_outages.emplace_back(from, to);
+    }
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error);
+  }
+  options.link.compress = !no_compress;
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  try {
+    std::fputs(pena::gateway::RunGateway(options, g_stop).c_str(), stdout);
+  } catch (const std::exception& error) {
+    spdlog::error("pena-gateway: {}", error.what());
+    return EXIT_FAILURE;
+  }
+  return EXIT_SUCCESS;
+}

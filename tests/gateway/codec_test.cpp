@@ -1,0 +1,157 @@
+// Round trips of the gateway's encodings: varints, map packing, items, frames.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "pena/gateway/frame.hpp"
+#include "pena/gateway/link_codec.hpp"
+#include "pena/gateway/map_packing.hpp"
+#include "pena/gateway/synthetic_team.hpp"
+#include "pena/gateway/varint.hpp"
+
+namespace pena::gateway {
+namespace {
+
+TEST(Varint, RoundTripsExtremesAndZigZag) {
+  ByteWriter out;
+  const std::vector<std::int64_t> values = {0, 1, -1, 63, -64, 300, -300, INT64_MAX, INT64_MIN};
+  for (std::int64_t value : values) out.PutSigned(value);
+  out.PutVarint(UINT64_MAX);
+  ByteReader in(out.bytes());
+  for (std::int64_t value : values) EXPECT_EQ(in.GetSigned(), value);
+  EXPECT_EQ(in.GetVarint(), UINT64_MAX);
+  EXPECT_FALSE(in.failed());
+  EXPECT_EQ(in.remaining(), 0U);
+  EXPECT_EQ(ZigZag(-1), 1U);
+  EXPECT_EQ(ZigZag(1), 2U);
+}
+
+TEST(Varint, ReaderFailsOnTruncatedAndOverlongInput) {
+  const std::string truncated_bytes("\x80\x80", 2);
+  const std::string overlong_bytes(11, '\xff');
+  const std::string too_many_bytes("\x05\x01", 2);
+  ByteReader truncated(truncated_bytes);
+  EXPECT_EQ(truncated.GetVarint(), 0U);
+  EXPECT_TRUE(truncated.failed());
+  ByteReader overlong(overlong_bytes);
+  overlong.GetVarint();
+  EXPECT_TRUE(overlong.failed());
+  ByteReader too_many(too_many_bytes);
+  EXPECT_EQ(too_many.GetCount(1), 0U);  // 5 things cannot fit in 1 byte
+  EXPECT_TRUE(too_many.failed());
+}
+
+// Real deltas: a synthetic team's LineMaps integrate and merge walls.
+std::vector<line_map::MapDelta> TeamDeltas(double duration_s, const std::string& only = "") {
+  SyntheticTeamOptions options;
+  options.alarm_period_s = 0.0;
+  SyntheticTeam team(options);
+  std::vector<line_map::MapDelta> deltas;
+  for (DomainItem& item : team.Advance(duration_s)) {
+    auto* change = std::get_if<MapChange>(&item);
+    if (change != nullptr && (only.empty() || change->map_id == only)) {
+      deltas.push_back(std::get<line_map::MapDelta>(change->change));
+    }
+  }
+  return deltas;
+}
+
+TEST(MapPacking, DeltasAndSnapshotsRoundTripExactly) {
+  const std::vector<line_map::MapDelta> deltas = TeamDeltas(120.0);
+  ASSERT_GT(deltas.size(), 100U);
+  std::size_t changed = 0;
+  for (const line_map::MapDelta& delta : deltas) {
+    std::string error;
+    std::optional<line_map::MapDelta> back = UnpackDelta(PackDelta(delta), &error);
+    ASSERT_TRUE(back) << error;
+    ASSERT_EQ(back->added.size(), delta.added.size());
+    ASSERT_EQ(back->changed.size(), delta.changed.size());
+    for (std::size_t i = 0; i < delta.added.size(); ++i) {
+      EXPECT_TRUE(line_map::SameSegment(back->added[i], delta.added[i]));
+    }
+    for (std::size_t i = 0; i < delta.changed.size(); ++i) {
+      EXPECT_TRUE(line_map::SameSegment(back->changed[i], delta.changed[i]));
+    }
+    EXPECT_EQ(back->removed, delta.removed);
+    changed += delta.changed.size() + delta.removed.size();
+  }
+  EXPECT_GT(changed, 0U) << "the team's maps should merge revisited walls";
+  line_map::LineMap map;
+  for (const line_map::MapDelta& delta : TeamDeltas(120.0, "ff1")) {
+    ASSERT_TRUE(map.Apply(delta).ok());
+  }
+  ASSERT_GT(map.size(), 10U);
+  std::string error;
+  std::optional<line_map::MapSnapshot> snapshot = UnpackSnapshot(PackSnapshot(map.Snapshot()), &error);
+  ASSERT_TRUE(snapshot) << error;
+  snapshot->version = map.version();
+  EXPECT_TRUE(line_map::SameMap(*snapshot, map.Snapshot()));
+  EXPECT_EQ(snapshot->next_id, map.Snapshot().next_id);
+}
+
+TEST(MapPacking, RefusesValuesOffTheMapQuanta) {
+  line_map::MapDelta delta;
+  line_map::LineSegment segment;
+  segment.id = 1;
+  segment.segment.end_m = {0.0005, 0.0};
+  delta.added.push_back(segment);
+  EXPECT_THROW(PackDelta(delta), std::invalid_argument);
+}
+
+TEST(MapPacking, RejectsEveryTruncation) {
+  const std::vector<line_map::MapDelta> deltas = TeamDeltas(20.0);
+  ASSERT_FALSE(deltas.empty());
+  const std::string packed = PackDelta(deltas.front());
+  for (std::size_t size = 0; size < packed.size(); ++size) {
+    std::string error;
+    EXPECT_FALSE(UnpackDelta(packed.substr(0, size), &error)) << "size " << size;
+    EXPECT_FALSE(error.empty());
+  }
+}
+
+TEST(LinkCodec, PoseRoundTripsWithinQuanta) {
+  const PoseUpdate pose{"ff1", {12.345, -7.891, 3.0}, 100.1234};
+  link::Item item;
+  ToProto(pose, 100000, &item);
+  std::string error;
+  std::optional<DomainItem> back = FromProto(item, 100000, &error);
+  ASSERT_TRUE(back) << error;
+  const auto& got = std::get<PoseUpdate>(*back);
+  EXPECT_EQ(got.entity, "ff1");
+  EXPECT_NEAR(got.world_from_body.x_m, 12.345, 0.005);
+  EXPECT_NEAR(got.world_from_body.y_m, -7.891, 0.005);
+  EXPECT_NEAR(geometry::NormalizeAngle(got.world_from_body.theta_rad - 3.0), 0.0,
+              0.05 * std::numbers::pi / 180.0);
+  EXPECT_NEAR(got.stamp_s, 100.1234, 0.0005);
+  EXPECT_LE(item.ByteSizeLong(), 22U);
+}
+
+TEST(LinkCodec, RejectsHeadingOutOfRangeAndEmptyBodies) {
+  link::Item item;
+  item.mutable_pose()->set_heading_ddeg(3600);
+  std::string error;
+  EXPECT_FALSE(FromProto(item, 0, &error));
+  EXPECT_NE(error.find("heading"), std::string::npos);
+  EXPECT_FALSE(FromProto(link::Item(), 0, &error));
+}
+
+TEST(Frame, RoundTripsPlainAndDeflated) {
+  const std::string text(300, 'a');
+  for (bool compress : {false, true}) {
+    const std::string frame = EncodeFrame(text, compress);
+    FrameResult result = DecodeFrame(frame);
+    ASSERT_TRUE(result.ok()) << result.message;
+    EXPECT_EQ(result.payload, text);
+    EXPECT_EQ(result.consumed, frame.size());
+    if (compress) {
+      EXPECT_LT(frame.size(), text.size());
+    }
+  }
+  // Incompressible payloads go plain: compression never makes a frame longer.
+  const std::string random_bytes = "\x13\x9a\xf0\x01\x7e";
+  EXPECT_EQ(EncodeFrame(random_bytes, true).size(), random_bytes.size() + 10U);
+}
+
+}  // namespace
+}  // namespace pena::gateway
