@@ -1,0 +1,156 @@
+#pragma once
+// The per-entity facade (paper sections 2 and 3): predict with dead reckoning or odometry, match
+// the scan against the reference, update the local grid, extract lines and integrate them into
+// the entity's line map, apply corrections from the fusion service and keep the global map it
+// sends. Pure: no DDS, no threads, no files. One instance per entity; not thread-safe.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+
+#include "pena/geometry/pose2.hpp"
+#include "pena/grid/local_grid.hpp"
+#include "pena/line_map/line_extractor.hpp"
+#include "pena/line_map/line_map.hpp"
+#include "pena/odometry/laser_odometry.hpp"
+#include "pena/sensors/entity.hpp"
+#include "pena/sensors/record.hpp"
+
+namespace pena::pipeline {
+
+// Options of the whole per-entity chain; validated by EntityPipeline's constructor.
+struct EntityPipelineOptions {
+  odometry::LaserOdometryOptions odometry;
+  grid::LocalGridOptions local_grid;
+  line_map::LineExtractionOptions extraction;
+  line_map::LineMapOptions line_map;
+  // Lines are extracted from the local grid when the window recentres and, in between, after
+  // the entity travelled this far since the last extraction. Metres, >= 0 (0 = at recentre only).
+  double map_update_distance_m = 5.0;
+  // Corrections with a lower confidence are ignored. Unitless, in [0, 1].
+  double min_correction_confidence = 0.3;
+  // A correction moving the map frame more than this (translation) starts a fresh local grid,
+  // so scans placed before and after it do not blur one wall into two. Metres, > 0.
+  double grid_reset_jump_m = 0.10;
+  // The same for the heading. Radians, > 0.
+  double grid_reset_jump_rad = 0.035;  // 2 deg
+  // Odometry poses remembered for corrections given at a past stamp. Count, >= 1.
+  int pose_history = 4096;
+};
+
+// Throws std::invalid_argument naming the field and its unit (nested options included).
+void ValidateEntityPipelineOptions(const EntityPipelineOptions& options);
+
+// What one laser scan produced.
+struct ScanStep {
+  odometry::OdometryEstimate odometry;  // in the odometry frame (odom_from_body)
+  geometry::Pose2 world_from_body;      // map_from_odom * odom_from_body: the best estimate
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // of world_from_body (x, y, theta)
+  std::optional<line_map::MapDelta> map_delta;  // the local line map's change, if it changed
+};
+
+// A correction from the fusion service (or an operator).
+struct Correction {
+  enum class Kind {
+    kMapFromOdom,  // map_from_odom replaces the current transform
+    kPose,         // the body was at world_from_body at stamp_s (a past scan's stamp)
+  };
+  Kind kind = Kind::kMapFromOdom;
+  geometry::Pose2 map_from_odom;
+  double stamp_s = 0.0;
+  geometry::Pose2 world_from_body;
+  double confidence = 1.0;  // [0, 1]
+};
+
+// Why a correction was or was not applied.
+enum class CorrectionStatus {
+  kApplied,
+  kLowConfidence,  // below min_correction_confidence
+  kUnknownStamp,   // kPose for a stamp not in the pose history (within 1 ms)
+  kInvalid,        // non-finite values or confidence outside [0, 1]
+};
+
+// The outcome of ApplyCorrection: the status, and the lines the old local grid held if the
+// correction moved the map frame enough to start a fresh grid.
+struct CorrectionResult {
+  CorrectionStatus status = CorrectionStatus::kApplied;
+  std::optional<line_map::MapDelta> map_delta;
+};
+
+// Counters over the run.
+struct PipelineCounts {
+  long extractions = 0;
+  long corrections_applied = 0;
+  long corrections_ignored = 0;
+  long grid_resets = 0;
+  long global_deltas_applied = 0;
+  long global_deltas_refused = 0;
+};
+
+// The chain of one entity. The odometry frame starts at world_from_start; until a correction
+// arrives map_from_odom is the identity, so the odometry frame is the world frame.
+class EntityPipeline {
+ public:
+  // Throws std::invalid_argument for bad options or an empty entity id.
+  EntityPipeline(const EntityPipelineOptions& options, sensors::EntityKind kind,
+                 std::string entity_id, const geometry::Pose2& world_from_start,
+                 double start_stamp_s);
+
+  // Feeds one record in time order; a laser scan yields its step, anything else nullopt.
+  std::optional<ScanStep> Add(const sensors::SensorRecord& record);
+  // Extracts the lines of the current window into the line map (end of input); the delta may
+  // be empty.
+  line_map::MapDelta Flush();
+
+  // Applies a correction (see CorrectionStatus).
+  CorrectionResult ApplyCorrection(const Correction& correction);
+  // Applies a global-map delta in order; on a gap the caller asks for a snapshot.
+  line_map::ApplyResult ApplyGlobalDelta(const line_map::MapDelta& delta);
+  // Replaces the global map by a snapshot (late join, gap); throws std::invalid_argument for a
+  // malformed snapshot (the old map stays).
+  void ResetGlobalMap(const line_map::MapSnapshot& snapshot);
+
+  const std::string& entity_id() const { return entity_id_; }
+  // The entity's own line map (world frame at the time each scan was placed).
+  const line_map::LineMap& local_map() const { return local_map_; }
+  // The fused map the fusion service sent.
+  const line_map::LineMap& global_map() const { return global_map_; }
+  // The current correction of the odometry frame.
+  const geometry::Pose2& map_from_odom() const { return map_from_odom_; }
+  const odometry::OdometryCounts& odometry_counts() const { return odometry_.counts(); }
+  const PipelineCounts& counts() const { return counts_; }
+
+ private:
+  static const EntityPipelineOptions& Validated(const EntityPipelineOptions& options);
+  // Extracts the lines of `image` and integrates them; the delta may be empty.
+  line_map::MapDelta ExtractAndIntegrate(const grid::GridImage& image);
+  // Runs the grid and line steps for a scan placed at world_from_body.
+  std::optional<line_map::MapDelta> UpdateMap(const sensors::LaserScan& scan,
+                                              const geometry::Pose2& world_from_body);
+  // Checks a correction and gives the map_from_odom it asks for.
+  CorrectionStatus Resolve(const Correction& correction, geometry::Pose2& map_from_odom) const;
+  // Switches to a new map_from_odom; a large move first extracts the grid and starts a new one.
+  std::optional<line_map::MapDelta> MoveMapFrame(const geometry::Pose2& map_from_odom);
+  // The odometry pose at `stamp_s` (within 1 ms) from the history.
+  std::optional<geometry::Pose2> OdomPoseAt(double stamp_s) const;
+
+  EntityPipelineOptions options_;
+  std::string entity_id_;
+  odometry::LaserOdometry odometry_;
+  grid::LocalGrid grid_;
+  line_map::LineMap local_map_;
+  line_map::LineMap global_map_;
+  geometry::Pose2 map_from_odom_;
+  std::optional<geometry::Pose2> last_extraction_pose_;
+  geometry::Pose2 last_world_from_body_;
+  bool grid_has_scans_ = false;
+  std::deque<std::pair<double, geometry::Pose2>> odom_history_;  // (stamp_s, odom_from_body)
+  PipelineCounts counts_;
+};
+
+// "applied", "low_confidence", "unknown_stamp", "invalid".
+const char* ToString(CorrectionStatus status);
+
+}  // namespace pena::pipeline

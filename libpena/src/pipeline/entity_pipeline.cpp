@@ -1,0 +1,211 @@
+#include "pena/pipeline/entity_pipeline.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+#include <variant>
+
+namespace pena::pipeline {
+namespace {
+
+// A stamp in the pose history matches a correction's stamp within this (TUM keeps 6 decimals).
+constexpr double kStampTolerance_s = 1e-3;
+
+bool Finite(const geometry::Pose2& pose) {
+  return std::isfinite(pose.x_m) && std::isfinite(pose.y_m) && std::isfinite(pose.theta_rad);
+}
+
+// The covariance of a pose moved by the rigid transform a_from_b (rotate the x-y block).
+Eigen::Matrix3d RotateCovariance(const Eigen::Matrix3d& covariance,
+                                 const geometry::Pose2& a_from_b) {
+  const double c = std::cos(a_from_b.theta_rad);
+  const double s = std::sin(a_from_b.theta_rad);
+  Eigen::Matrix3d jacobian = Eigen::Matrix3d::Identity();
+  jacobian.topLeftCorner<2, 2>() << c, -s, s, c;
+  return jacobian * covariance * jacobian.transpose();
+}
+
+}  // namespace
+
+// Validates before any member is built from the options (the nested ones validate themselves).
+const EntityPipelineOptions& EntityPipeline::Validated(const EntityPipelineOptions& options) {
+  ValidateEntityPipelineOptions(options);
+  return options;
+}
+
+void ValidateEntityPipelineOptions(const EntityPipelineOptions& options) {
+  if (!(options.map_update_distance_m >= 0.0)) {
+    throw std::invalid_argument("pipeline.map_update_distance_m must be >= 0 m, got " +
+                                std::to_string(options.map_update_distance_m));
+  }
+  if (!(options.min_correction_confidence >= 0.0 && options.min_correction_confidence <= 1.0)) {
+    throw std::invalid_argument("pipeline.min_correction_confidence must be in [0, 1], got " +
+                                std::to_string(options.min_correction_confidence));
+  }
+  if (!(options.grid_reset_jump_m > 0.0)) {
+    throw std::invalid_argument("pipeline.grid_reset_jump_m must be > 0 m, got " +
+                                std::to_string(options.grid_reset_jump_m));
+  }
+  if (!(options.grid_reset_jump_rad > 0.0)) {
+    throw std::invalid_argument("pipeline.grid_reset_jump_rad must be > 0 rad, got " +
+                                std::to_string(options.grid_reset_jump_rad));
+  }
+  if (options.pose_history < 1) {
+    throw std::invalid_argument("pipeline.pose_history must be >= 1 poses, got " +
+                                std::to_string(options.pose_history));
+  }
+  line_map::ValidateLineExtractionOptions(options.extraction);
+}
+
+EntityPipeline::EntityPipeline(const EntityPipelineOptions& options, sensors::EntityKind kind,
+                               std::string entity_id, const geometry::Pose2& world_from_start,
+                               double start_stamp_s)
+    : options_(Validated(options)),
+      entity_id_(std::move(entity_id)),
+      odometry_(options.odometry, kind, world_from_start, start_stamp_s),
+      grid_(options.local_grid, Eigen::Vector2d(world_from_start.x_m, world_from_start.y_m)),
+      local_map_(options.line_map),
+      global_map_(options.line_map),
+      last_world_from_body_(world_from_start) {
+  if (entity_id_.empty()) throw std::invalid_argument("pipeline: entity id must not be empty");
+}
+
+std::optional<ScanStep> EntityPipeline::Add(const sensors::SensorRecord& record) {
+  // Section 2: dead reckoning predicts, the scan matcher corrects against the reference.
+  std::optional<odometry::OdometryEstimate> estimate = odometry_.Add(record);
+  if (!estimate) return std::nullopt;
+  odom_history_.emplace_back(estimate->stamp_s, estimate->world_from_body);
+  while (odom_history_.size() > static_cast<std::size_t>(options_.pose_history)) {
+    odom_history_.pop_front();
+  }
+  ScanStep step;
+  step.world_from_body = geometry::Compose(map_from_odom_, estimate->world_from_body);
+  step.covariance = RotateCovariance(estimate->covariance, map_from_odom_);
+  step.odometry = std::move(*estimate);
+  last_world_from_body_ = step.world_from_body;
+  // Section 3: the scan goes into the local grid at the corrected pose; lines come out of it.
+  step.map_delta = UpdateMap(std::get<sensors::LaserScan>(record), step.world_from_body);
+  return step;
+}
+
+std::optional<line_map::MapDelta> EntityPipeline::UpdateMap(
+    const sensors::LaserScan& scan, const geometry::Pose2& world_from_body) {
+  // The laser sits at the body origin (as in the simulator and the CARMEN logs).
+  if (grid_.Insert(scan, world_from_body)) grid_has_scans_ = true;
+  if (!last_extraction_pose_) last_extraction_pose_ = world_from_body;
+  std::optional<line_map::MapDelta> delta;
+  if (grid_.NeedsRecentre(world_from_body)) {
+    delta = ExtractAndIntegrate(grid_.Recentre(world_from_body));
+  } else if (options_.map_update_distance_m > 0.0 &&
+             std::hypot(world_from_body.x_m - last_extraction_pose_->x_m,
+                        world_from_body.y_m - last_extraction_pose_->y_m) >=
+                 options_.map_update_distance_m) {
+    delta = ExtractAndIntegrate(grid_.ToImage());
+  } else {
+    return std::nullopt;
+  }
+  last_extraction_pose_ = world_from_body;
+  if (delta->empty()) return std::nullopt;
+  return delta;
+}
+
+line_map::MapDelta EntityPipeline::ExtractAndIntegrate(const grid::GridImage& image) {
+  ++counts_.extractions;
+  return local_map_.Integrate(line_map::ExtractLines(image, options_.extraction), entity_id_);
+}
+
+line_map::MapDelta EntityPipeline::Flush() {
+  if (!grid_has_scans_) return local_map_.Integrate({}, entity_id_);
+  return ExtractAndIntegrate(grid_.ToImage());
+}
+
+CorrectionResult EntityPipeline::ApplyCorrection(const Correction& correction) {
+  CorrectionResult result;
+  geometry::Pose2 map_from_odom;
+  result.status = Resolve(correction, map_from_odom);
+  if (result.status != CorrectionStatus::kApplied) {
+    ++counts_.corrections_ignored;
+    return result;
+  }
+  result.map_delta = MoveMapFrame(map_from_odom);
+  ++counts_.corrections_applied;
+  return result;
+}
+
+CorrectionStatus EntityPipeline::Resolve(const Correction& correction,
+                                         geometry::Pose2& map_from_odom) const {
+  if (!(correction.confidence >= 0.0 && correction.confidence <= 1.0) ||
+      !Finite(correction.map_from_odom) || !Finite(correction.world_from_body) ||
+      !std::isfinite(correction.stamp_s)) {
+    return CorrectionStatus::kInvalid;
+  }
+  if (correction.confidence < options_.min_correction_confidence) {
+    return CorrectionStatus::kLowConfidence;
+  }
+  if (correction.kind == Correction::Kind::kMapFromOdom) {
+    map_from_odom = correction.map_from_odom;
+    return CorrectionStatus::kApplied;
+  }
+  // world_from_body = map_from_odom * odom_from_body at the stamp, solved for map_from_odom.
+  const std::optional<geometry::Pose2> odom_from_body = OdomPoseAt(correction.stamp_s);
+  if (!odom_from_body) return CorrectionStatus::kUnknownStamp;
+  map_from_odom =
+      geometry::Compose(correction.world_from_body, geometry::Inverse(*odom_from_body));
+  return CorrectionStatus::kApplied;
+}
+
+std::optional<line_map::MapDelta> EntityPipeline::MoveMapFrame(
+    const geometry::Pose2& map_from_odom) {
+  // Where the entity is now, before and after: a large move would blur the grid's walls, so
+  // the old grid's lines are kept and a fresh grid starts at the corrected pose.
+  const geometry::Pose2 odom_from_body =
+      geometry::Compose(geometry::Inverse(map_from_odom_), last_world_from_body_);
+  const geometry::Pose2 moved = geometry::Compose(map_from_odom, odom_from_body);
+  const double jump_m =
+      std::hypot(moved.x_m - last_world_from_body_.x_m, moved.y_m - last_world_from_body_.y_m);
+  const double turn_rad =
+      std::abs(geometry::NormalizeAngle(moved.theta_rad - last_world_from_body_.theta_rad));
+  std::optional<line_map::MapDelta> delta;
+  if (grid_has_scans_ &&
+      (jump_m > options_.grid_reset_jump_m || turn_rad > options_.grid_reset_jump_rad)) {
+    delta = ExtractAndIntegrate(grid_.ToImage());
+    if (delta->empty()) delta.reset();
+    grid_ = grid::LocalGrid(options_.local_grid, Eigen::Vector2d(moved.x_m, moved.y_m));
+    grid_has_scans_ = false;
+    last_extraction_pose_.reset();
+    ++counts_.grid_resets;
+  }
+  map_from_odom_ = map_from_odom;
+  last_world_from_body_ = moved;
+  return delta;
+}
+
+std::optional<geometry::Pose2> EntityPipeline::OdomPoseAt(double stamp_s) const {
+  for (auto it = odom_history_.rbegin(); it != odom_history_.rend(); ++it) {
+    if (std::abs(it->first - stamp_s) <= kStampTolerance_s) return it->second;
+    if (it->first < stamp_s - kStampTolerance_s) break;
+  }
+  return std::nullopt;
+}
+
+line_map::ApplyResult EntityPipeline::ApplyGlobalDelta(const line_map::MapDelta& delta) {
+  line_map::ApplyResult result = global_map_.Apply(delta);
+  ++(result.ok() ? counts_.global_deltas_applied : counts_.global_deltas_refused);
+  return result;
+}
+
+void EntityPipeline::ResetGlobalMap(const line_map::MapSnapshot& snapshot) {
+  global_map_ = line_map::LineMap::FromSnapshot(snapshot, options_.line_map);
+}
+
+const char* ToString(CorrectionStatus status) {
+  switch (status) {
+    case CorrectionStatus::kApplied: return "applied";
+    case CorrectionStatus::kLowConfidence: return "low_confidence";
+    case CorrectionStatus::kUnknownStamp: return "unknown_stamp";
+    case CorrectionStatus::kInvalid: return "invalid";
+  }
+  return "unknown";
+}
+
+}  // namespace pena::pipeline

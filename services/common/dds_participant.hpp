@@ -1,0 +1,77 @@
+#pragma once
+// RAII around a Fast DDS 2.9 DomainParticipant created from an XML profile (never the built-in
+// default), with one publisher, one subscriber and the topics its writers and readers share.
+// Shape after the Fast DDS examples: the constructor throws DdsError, the destructor deletes
+// every contained entity and then the participant.
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pena::services {
+
+// A DDS entity could not be created (names the entity and the profile).
+class DdsError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Where the participant's and the endpoints' QoS come from.
+struct DdsOptions {
+  // XML profile files loaded in order before the participant is created (absolute paths).
+  std::vector<std::filesystem::path> profiles_files;
+  // The participant profile; "pena_loopback" keeps every packet on this machine.
+  std::string participant_profile = "pena_loopback";
+  // DDS domain; tests use their own so parallel runs do not meet.
+  int domain_id = 0;
+};
+
+// The default profile files: deploy/dds/pena-loopback.xml and pena-qos.xml of this source tree.
+std::vector<std::filesystem::path> DefaultProfilesFiles();
+
+// Loads an XML profile file once per process (later calls for the same file do nothing).
+// Throws DdsError naming the file if Fast DDS rejects it.
+void LoadProfilesFile(const std::filesystem::path& path);
+
+// A participant with its publisher, subscriber and topics.
+class Participant {
+ public:
+  // Loads the profile files, then creates the participant from participant_profile.
+  Participant(const DdsOptions& options, const std::string& name);
+  ~Participant();
+  Participant(const Participant&) = delete;
+  Participant& operator=(const Participant&) = delete;
+
+  // The topic `name` of type PubSubType, created on first use (default topic QoS: the
+  // endpoints' profiles carry all QoS).
+  template <class PubSubType>
+  eprosima::fastdds::dds::Topic* GetTopic(const std::string& name) {
+    return GetTopic(name, eprosima::fastdds::dds::TypeSupport(new PubSubType()));
+  }
+
+  eprosima::fastdds::dds::DomainParticipant* get() const { return participant_; }
+  eprosima::fastdds::dds::Publisher* publisher() const { return publisher_; }
+  eprosima::fastdds::dds::Subscriber* subscriber() const { return subscriber_; }
+  const std::string& name() const { return name_; }
+
+ private:
+  eprosima::fastdds::dds::Topic* GetTopic(const std::string& name,
+                                          eprosima::fastdds::dds::TypeSupport type);
+
+  std::string name_;
+  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  std::mutex topics_mutex_;
+  std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+};
+
+}  // namespace pena::services

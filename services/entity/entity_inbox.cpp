@@ -1,0 +1,93 @@
+// pena-entity: what the worker does with the samples its listeners queued (corrections, the
+// global map, sync requests). Part of EntityService (entity_service.hpp).
+#include <spdlog/spdlog.h>
+
+#include <sstream>
+
+#include "entity_service.hpp"
+#include "from_dds.hpp"
+#include "to_dds.hpp"
+
+namespace pena::services {
+namespace {
+
+// A version gap in the global map asks for a snapshot at most this often.
+constexpr std::int64_t kSyncRequestIntervalNs = 1'000'000'000;
+
+std::string PoseCsv(const geometry::Pose2& pose) {
+  std::ostringstream out;
+  out.precision(9);
+  out << pose.x_m << ',' << pose.y_m << ',' << pose.theta_rad;
+  return out.str();
+}
+
+}  // namespace
+
+void EntityService::Handle(const pena_dds::Correction& sample) {
+  if (sample.entity_id().to_string() != entity_id_) return;
+  ++summary_.corrections_received;
+  pipeline::CorrectionResult result;
+  try {
+    result = pipeline_->ApplyCorrection(FromDds(sample));
+  } catch (const std::invalid_argument& error) {
+    spdlog::warn("{}: correction {} dropped: {}", entity_id_, sample.seq(), error.what());
+    return;
+  }
+  if (result.status == pipeline::CorrectionStatus::kApplied) correction_seq_ = sample.seq();
+  spdlog::debug("{}: correction {} {}", entity_id_, sample.seq(), ToString(result.status));
+  if (recorder_) {
+    recorder_->Csv("received_corrections", "seq,kind,stamp_s,confidence,map_from_odom_x_m,"
+                   "map_from_odom_y_m,map_from_odom_theta_rad,status",
+                   std::to_string(sample.seq()) + ',' + std::to_string(sample.kind()) + ',' +
+                       std::to_string(sample.stamp_s()) + ',' +
+                       std::to_string(sample.confidence()) + ',' +
+                       PoseCsv(pipeline_->map_from_odom()) + ',' + ToString(result.status));
+  }
+  if (result.map_delta) PublishDelta(*result.map_delta, last_stamp_s_);
+}
+
+void EntityService::Handle(const pena_dds::GlobalMapDelta& sample) {
+  ++summary_.global_deltas_received;
+  line_map::MapDelta delta;
+  try {
+    delta = FromDds(sample);
+  } catch (const std::invalid_argument& error) {
+    spdlog::warn("{}: global map delta dropped: {}", entity_id_, error.what());
+    return;
+  }
+  const line_map::ApplyResult result = pipeline_->ApplyGlobalDelta(delta);
+  if (recorder_) recorder_->Delta("received_global_map_deltas", delta);
+  if (result.status != line_map::ApplyStatus::kVersionGap) return;
+  // A delta was lost (or we joined late): ask the fusion service for its snapshot.
+  const std::int64_t now_ns = NowNs();
+  if (now_ns - last_sync_request_ns_ < kSyncRequestIntervalNs) return;
+  last_sync_request_ns_ = now_ns;
+  pena_dds::SyncRequest request;
+  SetBounded(request.requester_id(), entity_id_, "entity_id");
+  request.schema_version(pena_dds::SCHEMA_VERSION);
+  request.target_id(kGlobalMapId);
+  request.have_version(pipeline_->global_map().version());
+  Send(sync_writer_, request);
+  spdlog::info("{}: {}; asked for the global snapshot", entity_id_, result.message);
+}
+
+void EntityService::Handle(const pena_dds::GlobalMapSnapshot& sample) {
+  try {
+    const line_map::MapSnapshot snapshot = FromDds(sample);
+    if (snapshot.version <= pipeline_->global_map().version()) return;
+    pipeline_->ResetGlobalMap(snapshot);
+    if (recorder_) recorder_->Snapshot("received_global_map_snapshots", snapshot);
+    spdlog::info("{}: global map snapshot version {}", entity_id_, snapshot.version);
+  } catch (const std::invalid_argument& error) {
+    spdlog::warn("{}: global map snapshot dropped: {}", entity_id_, error.what());
+  }
+}
+
+void EntityService::Handle(const pena_dds::SyncRequest& sample) {
+  if (sample.target_id().to_string() != entity_id_) return;
+  spdlog::info("{}: {} asked for our line map (it holds version {})", entity_id_,
+               sample.requester_id().to_string(), sample.have_version());
+  PublishSnapshot();
+}
+
+}  // namespace pena::services

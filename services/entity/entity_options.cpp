@@ -1,0 +1,98 @@
+#include "entity_options.hpp"
+
+#include <stdexcept>
+
+#include "config_loader.hpp"
+#include "pena/io/input_error.hpp"
+
+namespace pena::services {
+namespace {
+
+odometry::MotionPrior ParseMotionPrior(const std::string& text) {
+  if (text == "auto") return odometry::MotionPrior::kAuto;
+  if (text == "dead_reckoning") return odometry::MotionPrior::kDeadReckoning;
+  if (text == "stride_only") return odometry::MotionPrior::kStrideOnly;
+  if (text == "odometry") return odometry::MotionPrior::kOdometry;
+  if (text == "none") return odometry::MotionPrior::kNone;
+  throw std::invalid_argument("pipeline.motion_prior must be auto, dead_reckoning, stride_only, "
+                              "odometry or none, got '" + text + "'");
+}
+
+void ApplyPipeline(const config::PipelineConfig& config, pipeline::EntityPipelineOptions& out) {
+  if (config.has_motion_prior()) out.odometry.motion_prior = ParseMotionPrior(config.motion_prior());
+  if (config.has_match_scans()) out.odometry.match_scans = config.match_scans();
+  if (config.has_grid_resolution_m()) out.local_grid.grid.resolution_m = config.grid_resolution_m();
+  if (config.has_local_grid_size_m()) out.local_grid.size_m = config.local_grid_size_m();
+  if (config.has_map_update_distance_m()) {
+    out.map_update_distance_m = config.map_update_distance_m();
+  }
+  if (config.has_min_correction_confidence()) {
+    out.min_correction_confidence = config.min_correction_confidence();
+  }
+}
+
+DdsOptions DdsFromConfig(const config::DdsConfig& config, const std::filesystem::path& path) {
+  DdsOptions out;
+  for (const std::string& file : config.profiles_files()) {
+    out.profiles_files.push_back(ResolvePath(path, file));
+  }
+  if (out.profiles_files.empty()) out.profiles_files = DefaultProfilesFiles();
+  out.participant_profile = config.participant_profile();
+  out.domain_id = config.domain_id();
+  return out;
+}
+
+}  // namespace
+
+EntityServiceOptions EntityOptionsFromConfig(const config::EntityConfig& config,
+                                             const std::filesystem::path& config_path) {
+  EntityServiceOptions out;
+  try {
+    if (config.has_input()) out.input = ResolvePath(config_path, config.input());
+    out.entity_id = config.entity_id();
+    if (config.has_kind()) {
+      out.kind = sensors::ParseEntityKind(config.kind());
+      if (!out.kind) throw std::invalid_argument("kind must be human or robot, got '" +
+                                                 config.kind() + "'");
+    }
+    out.rate = config.rate();
+    if (config.has_output_dir()) out.output_dir = ResolvePath(config_path, config.output_dir());
+    out.record = config.record();
+    out.heartbeat_period_s = config.heartbeat_period_s();
+    out.range_quantum_m = config.range_quantum_m();
+    out.linger_s = config.linger_s();
+    out.wait_for_readers_s = config.wait_for_readers_s();
+    out.read.carmen_max_range_m = config.carmen_max_range_m();
+    ApplyPipeline(config.pipeline(), out.pipeline);
+    out.dds = DdsFromConfig(config.dds(), config_path);
+    out.log_level = config.log().level();
+    if (config.log().has_file()) out.log_file = ResolvePath(config_path, config.log().file());
+  } catch (const std::invalid_argument& error) {
+    throw io::InputError(config_path, 0, error.what());
+  }
+  return out;
+}
+
+void ValidateEntityOptions(const EntityServiceOptions& options) {
+  auto require = [](bool ok, const std::string& message) {
+    if (!ok) throw std::invalid_argument(message);
+  };
+  require(!options.input.empty(), "input is required (a sensors.penalog or a CARMEN log)");
+  require(options.rate >= 0.0, "rate must be >= 0 (0 = as fast as possible), got " +
+                                   std::to_string(options.rate));
+  require(options.heartbeat_period_s > 0.0, "heartbeat_period_s must be > 0 s, got " +
+                                                std::to_string(options.heartbeat_period_s));
+  require(options.range_quantum_m > 0.0, "range_quantum_m must be > 0 m, got " +
+                                             std::to_string(options.range_quantum_m));
+  require(options.linger_s >= 0.0, "linger_s must be >= 0 s, got " +
+                                       std::to_string(options.linger_s));
+  require(options.wait_for_readers_s >= 0.0, "wait_for_readers_s must be >= 0 s, got " +
+                                                 std::to_string(options.wait_for_readers_s));
+  require(options.dds.domain_id >= 0 && options.dds.domain_id <= 232,
+          "dds.domain_id must be in 0..232, got " + std::to_string(options.dds.domain_id));
+  require(options.record ? !options.output_dir.empty() : true,
+          "record needs output_dir (the recording goes to output_dir/recording)");
+  pipeline::ValidateEntityPipelineOptions(options.pipeline);
+}
+
+}  // namespace pena::services

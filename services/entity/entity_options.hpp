@@ -1,0 +1,43 @@
+#pragma once
+// pena-entity's options: a plain struct filled from the config file (service_config.proto,
+// EntityConfig) and the command line, validated with messages naming the key and its unit.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "dds_participant.hpp"
+#include "pena/io/log_source.hpp"
+#include "pena/pipeline/entity_pipeline.hpp"
+#include "pena/sensors/entity.hpp"
+#include "service_config.pb.h"
+
+namespace pena::services {
+
+struct EntityServiceOptions {
+  std::filesystem::path input;        // native log or CARMEN log
+  std::string entity_id;              // empty: the log's own, else the file's stem
+  std::optional<sensors::EntityKind> kind;  // empty: the log's own, else robot
+  double rate = 1.0;                  // time scale; 0 = as fast as possible
+  std::filesystem::path output_dir;   // empty: no files written
+  bool record = false;                // record sent/received samples under output_dir/recording
+  double heartbeat_period_s = 1.0;    // wall seconds
+  double range_quantum_m = 0.01;
+  double linger_s = 2.0;              // wall seconds to wait for acknowledgements at the end
+  double wait_for_readers_s = 0.0;    // wall seconds to wait for a line-map reader at the start
+  io::ReadOptions read;
+  pipeline::EntityPipelineOptions pipeline;
+  DdsOptions dds;
+  std::string log_level = "info";
+  std::filesystem::path log_file;
+};
+
+// The options a config gives; relative paths resolve against the config file's directory.
+// Throws io::InputError(config_path, 0, "key: what") for a bad value.
+EntityServiceOptions EntityOptionsFromConfig(const config::EntityConfig& config,
+                                             const std::filesystem::path& config_path);
+
+// Checks the whole struct; throws std::invalid_argument naming the key and unit.
+void ValidateEntityOptions(const EntityServiceOptions& options);
+
+}  // namespace pena::services

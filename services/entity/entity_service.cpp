@@ -1,0 +1,253 @@
+#include "entity_service.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <thread>
+
+#include "pena/io/input_error.hpp"
+#include "pena/io/line_csv.hpp"
+#include "pena/io/trajectory_io.hpp"
+#include "pena/pipeline/start_pose.hpp"
+#include "signals.hpp"
+#include "to_dds.hpp"
+
+namespace pena::services {
+namespace {
+
+// The worker wakes at least this often to look at the stop flag and the heartbeat.
+constexpr std::int64_t kPollNs = 50'000'000;
+
+std::int64_t SecondsToNs(double seconds) { return static_cast<std::int64_t>(seconds * 1e9); }
+
+}  // namespace
+
+EntityService::EntityService(EntityServiceOptions options)
+    : options_(std::move(options)),
+      source_(io::OpenLog(options_.input, options_.read)),
+      participant_(options_.dds, "pena-entity"),
+      pose_writer_(participant_, topics::kPose),
+      status_writer_(participant_, topics::kStatus),
+      delta_writer_(participant_, topics::kLineMapDelta),
+      snapshot_writer_(participant_, topics::kLineMapSnapshot),
+      scan_writer_(participant_, topics::kReferenceScan),
+      sync_writer_(participant_, topics::kSyncRequest),
+      correction_reader_(participant_, topics::kCorrection,
+                         [this](pena_dds::Correction&& s, const SampleMeta&) {
+                           inbox_.Push(std::move(s));
+                         }),
+      global_delta_reader_(participant_, topics::kGlobalMapDelta,
+                           [this](pena_dds::GlobalMapDelta&& s, const SampleMeta&) {
+                             inbox_.Push(std::move(s));
+                           }),
+      global_snapshot_reader_(participant_, topics::kGlobalMapSnapshot,
+                              [this](pena_dds::GlobalMapSnapshot&& s, const SampleMeta&) {
+                                inbox_.Push(std::move(s));
+                              }),
+      sync_reader_(participant_, topics::kSyncRequest,
+                   [this](pena_dds::SyncRequest&& s, const SampleMeta&) {
+                     inbox_.Push(std::move(s));
+                   }) {
+  ReadAhead();
+  if (options_.record) recorder_.emplace(options_.output_dir / "recording");
+}
+
+EntityService::~EntityService() = default;
+
+void EntityService::ReadAhead() {
+  // Up to the first scan: the start pose and the first stamp come from there.
+  while (auto record = source_->Next()) {
+    read_ahead_.push_back(std::move(*record));
+    if (std::holds_alternative<sensors::LaserScan>(read_ahead_.back())) break;
+  }
+  if (read_ahead_.empty()) throw io::InputError(options_.input, 0, "the log holds no records");
+  const io::LogDescription& description = source_->description();
+  kind_ = options_.kind.value_or(description.kind.value_or(sensors::EntityKind::kRobot));
+  const std::string file_name = options_.input.filename().string();
+  entity_id_ = !options_.entity_id.empty()         ? options_.entity_id
+               : !description.entity_id.empty() ? description.entity_id
+                                                : file_name.substr(0, file_name.find('.'));
+  pena_dds::EntityPose probe;
+  SetBounded(probe.entity_id(), entity_id_, "entity_id");
+  const pipeline::StartPose start =
+      pipeline::StartPoseOf(read_ahead_, description.format == "pena-log");
+  pipeline_.emplace(options_.pipeline, kind_, entity_id_, start.world_from_body,
+                    sensors::StampOf(read_ahead_.front()));
+  summary_.entity_id = entity_id_;
+  spdlog::info("{}: {} ({}), {} log, start pose from {} ({:.3f}, {:.3f}, {:.3f})", entity_id_,
+               options_.input.string(), sensors::ToString(kind_), description.format,
+               start.source, start.world_from_body.x_m, start.world_from_body.y_m,
+               start.world_from_body.theta_rad);
+}
+
+void EntityService::WaitForReaders() {
+  const std::int64_t until_ns = NowNs() + SecondsToNs(options_.wait_for_readers_s);
+  while (delta_writer_.matched() == 0 && NowNs() < until_ns && !StopRequested()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (options_.wait_for_readers_s > 0.0 && delta_writer_.matched() == 0) {
+    spdlog::warn("{}: no line-map reader matched within {} s; starting anyway", entity_id_,
+                 options_.wait_for_readers_s);
+  }
+}
+
+EntityRunSummary EntityService::Run() {
+  WaitForReaders();
+  PublishStatus(pena_dds::ENTITY_RUNNING);
+  const double first_stamp_s = sensors::StampOf(read_ahead_.front());
+  const std::int64_t wall_start_ns = NowNs();
+  next_heartbeat_ns_ = wall_start_ns + SecondsToNs(options_.heartbeat_period_s);
+  std::size_t ahead = 0;
+  while (!StopRequested()) {
+    std::optional<sensors::SensorRecord> record;
+    if (ahead < read_ahead_.size()) {
+      record = std::move(read_ahead_[ahead++]);
+    } else {
+      record = source_->Next();
+    }
+    if (!record) break;
+    // Pace the log: mission time runs `rate` times faster than wall time.
+    if (options_.rate > 0.0) {
+      const double offset_s = (sensors::StampOf(*record) - first_stamp_s) / options_.rate;
+      DrainInbox(wall_start_ns + SecondsToNs(offset_s));
+    } else {
+      DrainInbox(0);
+    }
+    Feed(*record);
+    HeartbeatIfDue();
+  }
+  summary_.interrupted = StopRequested();
+  Finish();
+  return summary_;
+}
+
+void EntityService::DrainInbox(std::int64_t until_ns) {
+  while (true) {
+    const std::int64_t now_ns = NowNs();
+    const std::int64_t wait_ns = std::min(std::max<std::int64_t>(until_ns - now_ns, 0), kPollNs);
+    std::optional<Event> event = inbox_.PopFor(std::chrono::nanoseconds(wait_ns));
+    if (event) {
+      std::visit([this](const auto& sample) { Handle(sample); }, *event);
+    } else if (NowNs() >= until_ns || StopRequested()) {
+      return;
+    }
+    HeartbeatIfDue();
+  }
+}
+
+void EntityService::Feed(const sensors::SensorRecord& record) {
+  ++summary_.records;
+  std::optional<pipeline::ScanStep> step = pipeline_->Add(record);
+  if (!step) return;
+  last_stamp_s_ = step->odometry.stamp_s;
+  trajectory_.push_back({last_stamp_s_, step->world_from_body});
+  const std::uint64_t map_version =
+      pipeline_->local_map().version();
+  pena_dds::EntityPose pose =
+      ToDdsPose(*step, entity_id_, ++pose_seq_, map_version, correction_seq_);
+  Send(pose_writer_, pose);
+  ++summary_.poses_sent;
+  if (step->odometry.reference_changed) {
+    pena_dds::ReferenceScan scan =
+        ToDdsReferenceScan(std::get<sensors::LaserScan>(record), *step, entity_id_, ++scan_seq_,
+                           map_version, options_.range_quantum_m);
+    Send(scan_writer_, scan);
+    ++summary_.reference_scans_sent;
+  }
+  if (step->map_delta) PublishDelta(*step->map_delta, last_stamp_s_);
+}
+
+void EntityService::SendFailed(const std::string& topic) {
+  ++summary_.send_failures;
+  spdlog::warn("{}: DDS refused a sample on {}", entity_id_, topic);
+}
+
+void EntityService::PublishDelta(const line_map::MapDelta& delta, double stamp_s) {
+  try {
+    pena_dds::LineMapDelta sample = ToDdsLineMapDelta(delta, entity_id_, stamp_s);
+    Send(delta_writer_, sample);
+    ++summary_.deltas_sent;
+    if (recorder_) recorder_->Delta("sent_line_map_deltas", delta);
+    spdlog::debug("{}: line map {} -> {} (+{} ~{} -{})", entity_id_, delta.from_version,
+                  delta.to_version, delta.added.size(), delta.changed.size(),
+                  delta.removed.size());
+  } catch (const std::exception& error) {
+    // Readers see a version gap and ask for a snapshot (SyncRequest).
+    ++summary_.send_failures;
+    spdlog::error("{}: line-map delta {} -> {} not sent: {}", entity_id_, delta.from_version,
+                  delta.to_version, error.what());
+  }
+}
+
+void EntityService::PublishSnapshot() {
+  const line_map::MapSnapshot snapshot = pipeline_->local_map().Snapshot();
+  try {
+    pena_dds::LineMapSnapshot sample = ToDdsLineMapSnapshot(snapshot, entity_id_, last_stamp_s_);
+    Send(snapshot_writer_, sample);
+    ++summary_.snapshots_sent;
+    if (recorder_) recorder_->Snapshot("sent_line_map_snapshots", snapshot);
+  } catch (const std::exception& error) {
+    ++summary_.send_failures;
+    spdlog::error("{}: line-map snapshot {} not sent: {}", entity_id_, snapshot.version,
+                  error.what());
+  }
+}
+
+void EntityService::PublishStatus(pena_dds::EntityState state, const std::string& message) {
+  pena_dds::EntityStatus status;
+  SetBounded(status.entity_id(), entity_id_, "entity_id");
+  status.schema_version(pena_dds::SCHEMA_VERSION);
+  status.kind(ToDds(kind_));
+  status.state(state);
+  status.mission(source_->description().mission.substr(0, 64));
+  status.stamp_s(last_stamp_s_);
+  const odometry::OdometryCounts& counts = pipeline_->odometry_counts();
+  status.scans(static_cast<std::uint64_t>(counts.scans));
+  status.matched(static_cast<std::uint64_t>(counts.matched + counts.degenerate));
+  status.failed(static_cast<std::uint64_t>(counts.failed));
+  status.local_map_version(pipeline_->local_map().version());
+  status.local_map_segments(pipeline_->local_map().size());
+  status.global_map_version(pipeline_->global_map().version());
+  status.corrections_applied(static_cast<std::uint64_t>(pipeline_->counts().corrections_applied));
+  status.message(message.substr(0, 128));
+  Send(status_writer_, status);
+}
+
+void EntityService::HeartbeatIfDue() {
+  const std::int64_t now_ns = NowNs();
+  if (now_ns < next_heartbeat_ns_) return;
+  next_heartbeat_ns_ = now_ns + SecondsToNs(options_.heartbeat_period_s);
+  PublishStatus(pena_dds::ENTITY_RUNNING);
+}
+
+void EntityService::Finish() {
+  // What the last window holds goes into the map; the final snapshot lets any reader check.
+  const line_map::MapDelta last = pipeline_->Flush();
+  if (!last.empty()) PublishDelta(last, last_stamp_s_);
+  PublishSnapshot();
+  PublishStatus(pena_dds::ENTITY_FINISHED, summary_.interrupted ? "stopped by a signal" : "");
+  summary_.local_map_version = pipeline_->local_map().version();
+  summary_.local_map_segments = pipeline_->local_map().size();
+  if (!delta_writer_.WaitForAcknowledgments(options_.linger_s) ||
+      !snapshot_writer_.WaitForAcknowledgments(options_.linger_s)) {
+    spdlog::warn("{}: not every reader acknowledged the last line-map samples within {} s",
+                 entity_id_, options_.linger_s);
+  }
+  status_writer_.WaitForAcknowledgments(options_.linger_s);
+  WriteOutputs();
+}
+
+void EntityService::WriteOutputs() const {
+  if (options_.output_dir.empty()) return;
+  std::filesystem::create_directories(options_.output_dir);
+  io::WriteTum(options_.output_dir / "trajectory.tum", trajectory_);
+  std::vector<io::LineRow> rows;
+  for (const line_map::LineSegment& line : pipeline_->local_map().segments()) {
+    rows.push_back({line.id, line.segment, ""});
+  }
+  io::WriteLineCsv(options_.output_dir / "line_map.csv", rows);
+  spdlog::info("{}: wrote {} and line_map.csv", entity_id_,
+               (options_.output_dir / "trajectory.tum").string());
+}
+
+}  // namespace pena::services

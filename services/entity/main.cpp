@@ -1,0 +1,109 @@
+// pena-entity: the PeNa service of one firefighter or robot (docs/services.md). Reads a sensor
+// log at a chosen rate, runs the per-entity pipeline and talks DDS (docs/dds.md). Exits 0 when
+// the input ended or a signal stopped it cleanly, 1 on bad options or input, 2 on a DDS failure.
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cstdlib>
+#include <iostream>
+
+#include "config_loader.hpp"
+#include "entity_options.hpp"
+#include "entity_service.hpp"
+#include "logging.hpp"
+#include "signals.hpp"
+
+namespace {
+
+using pena::services::EntityServiceOptions;
+
+// Command-line values; each given one overrides the config file's.
+struct Overrides {
+  std::string config, input, entity_id, kind, output_dir, participant_profile, log_level;
+  std::vector<std::string> profiles_files;
+  std::optional<double> rate, wait_for_readers_s, linger_s;
+  std::optional<int> domain_id;
+  bool record = false;
+};
+
+void AddOptions(CLI::App& app, Overrides& o) {
+  app.add_option("--config", o.config, "Config file (Protobuf text format, EntityConfig)");
+  app.add_option("--input", o.input, "sensors.penalog, its entity directory, or a CARMEN log");
+  app.add_option("--entity-id", o.entity_id, "Entity id on the topics (default: the log's)");
+  app.add_option("--kind", o.kind, "human or robot (default: the log's)");
+  app.add_option("--rate", o.rate, "Time scale: 1 real time, 10 ten times faster, 0 flat out");
+  app.add_option("--out", o.output_dir, "Output directory: trajectory.tum, line_map.csv");
+  app.add_flag("--record", o.record, "Record sent/received samples under OUT/recording");
+  app.add_option("--domain", o.domain_id, "DDS domain id (0..232)");
+  app.add_option("--profile", o.participant_profile, "Participant profile (default pena_loopback)");
+  app.add_option("--profiles-file", o.profiles_files, "DDS XML profile file (repeatable)");
+  app.add_option("--wait-for-readers", o.wait_for_readers_s,
+                 "Wait up to this many seconds for a line-map reader before starting");
+  app.add_option("--linger", o.linger_s, "Seconds to wait for acknowledgements at the end");
+  app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error");
+}
+
+EntityServiceOptions BuildOptions(const Overrides& o) {
+  pena::services::config::EntityConfig config;
+  if (!o.config.empty()) {
+    config = pena::services::LoadTextConfig<pena::services::config::EntityConfig>(o.config);
+  }
+  EntityServiceOptions options = pena::services::EntityOptionsFromConfig(config, o.config);
+  if (!o.input.empty()) options.input = o.input;
+  if (std::filesystem::is_directory(options.input)) options.input /= "sensors.penalog";
+  if (!o.entity_id.empty()) options.entity_id = o.entity_id;
+  if (!o.kind.empty()) {
+    options.kind = pena::sensors::ParseEntityKind(o.kind);
+    if (!options.kind) throw std::invalid_argument("--kind must be human or robot");
+  }
+  if (o.rate) options.rate = *o.rate;
+  if (!o.output_dir.empty()) options.output_dir = o.output_dir;
+  if (o.record) options.record = true;
+  if (o.domain_id) options.dds.domain_id = *o.domain_id;
+  if (!o.participant_profile.empty()) options.dds.participant_profile = o.participant_profile;
+  if (!o.profiles_files.empty()) {
+    options.dds.profiles_files.assign(o.profiles_files.begin(), o.profiles_files.end());
+  }
+  if (o.wait_for_readers_s) options.wait_for_readers_s = *o.wait_for_readers_s;
+  if (o.linger_s) options.linger_s = *o.linger_s;
+  if (!o.log_level.empty()) options.log_level = o.log_level;
+  pena::services::ValidateEntityOptions(options);
+  return options;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app("pena-entity: the PeNa service of one firefighter or robot");
+  Overrides overrides;
+  AddOptions(app, overrides);
+  CLI11_PARSE(app, argc, argv);
+  EntityServiceOptions options;
+  try {
+    options = BuildOptions(overrides);
+    pena::services::SetupLogging("pena-entity", options.log_level, options.log_file);
+  } catch (const std::exception& error) {
+    std::cerr << "pena-entity: " << error.what() << '\n';
+    return EXIT_FAILURE;
+  }
+  pena::services::InstallStopSignals();
+  try {
+    pena::services::EntityService service(std::move(options));
+    const pena::services::EntityRunSummary summary = service.Run();
+    spdlog::info("{}: {} records, {} poses, {} deltas, {} reference scans, {} snapshots sent, "
+                 "{} send failures; {} corrections, {} global deltas received; line map version "
+                 "{} with {} segments{}",
+                 summary.entity_id, summary.records, summary.poses_sent, summary.deltas_sent,
+                 summary.reference_scans_sent, summary.snapshots_sent, summary.send_failures,
+                 summary.corrections_received, summary.global_deltas_received,
+                 summary.local_map_version, summary.local_map_segments,
+                 summary.interrupted ? " (stopped by a signal)" : "");
+  } catch (const pena::services::DdsError& error) {
+    spdlog::critical("DDS failure: {}", error.what());
+    return 2;
+  } catch (const std::exception& error) {
+    spdlog::critical("{}", error.what());
+    return EXIT_FAILURE;
+  }
+  return EXIT_SUCCESS;
+}

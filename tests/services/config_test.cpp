@@ -1,0 +1,61 @@
+// Strict config loading: unknown keys and bad values are errors naming file and line.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "config_loader.hpp"
+#include "entity_options.hpp"
+#include "service_test_support.hpp"
+
+namespace pena::services {
+namespace {
+
+std::filesystem::path Write(const std::string& name, const std::string& text) {
+  const std::filesystem::path path = testing::ScratchDir("config") / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(ConfigLoader, ReadsAValidEntityConfigAndResolvesPathsAgainstIt) {
+  const auto path = Write("entity.conf",
+                          "input: \"mission/ff1\"\nrate: 10\nrecord: true\noutput_dir: \"out\"\n"
+                          "pipeline { map_update_distance_m: 3 }\n"
+                          "dds { participant_profile: \"pena_loopback\" domain_id: 7 }\n");
+  const auto config = LoadTextConfig<config::EntityConfig>(path);
+  const EntityServiceOptions options = EntityOptionsFromConfig(config, path);
+  EXPECT_EQ(options.input, path.parent_path() / "mission/ff1");
+  EXPECT_DOUBLE_EQ(options.rate, 10.0);
+  EXPECT_DOUBLE_EQ(options.pipeline.map_update_distance_m, 3.0);
+  EXPECT_EQ(options.dds.domain_id, 7);
+  EXPECT_EQ(options.dds.profiles_files.size(), 2u);  // the defaults: loopback + QoS
+  EXPECT_NO_THROW(ValidateEntityOptions(options));
+}
+
+TEST(ConfigLoader, UnknownKeyIsAnErrorNamingFileAndLine) {
+  const auto path = Write("typo.conf", "input: \"x\"\n\nrat: 10\n");
+  try {
+    LoadTextConfig<config::EntityConfig>(path);
+    FAIL() << "no exception";
+  } catch (const io::InputError& error) {
+    EXPECT_EQ(error.line(), 3u);
+    EXPECT_NE(std::string(error.what()).find("typo.conf:3"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("rat"), std::string::npos) << error.what();
+  }
+}
+
+TEST(ConfigLoader, BadValuesAreNamed) {
+  const auto path = Write("bad.conf", "input: \"x\"\nkind: \"dog\"\n");
+  EXPECT_THROW(EntityOptionsFromConfig(LoadTextConfig<config::EntityConfig>(path), path),
+               io::InputError);
+  const auto rate = Write("rate.conf", "input: \"x\"\nrate: -1\n");
+  try {
+    ValidateEntityOptions(EntityOptionsFromConfig(LoadTextConfig<config::EntityConfig>(rate), rate));
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("rate"), std::string::npos);
+  }
+  EXPECT_THROW(LoadTextConfig<config::EntityConfig>("/nonexistent/entity.conf"), io::InputError);
+}
+
+}  // namespace
+}  // namespace pena::services

@@ -1,0 +1,184 @@
+// pena-entity as a real process on loopback DDS, with this test as its subscriber: poses and
+// line-map deltas arrive, the deltas applied in order rebuild the entity's final map, SIGTERM
+// stops it cleanly, a bad config exits non-zero naming file and line.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+
+#include <chrono>
+#include <map>
+
+#include "dds_endpoints.hpp"
+#include "from_dds.hpp"
+#include "pena/io/line_csv.hpp"
+#include "pena/io/trajectory_io.hpp"
+#include "pena/line_map/line_map.hpp"
+#include "pena/sim/mission_writer.hpp"
+#include "pena/sim/scenario.hpp"
+#include "pena/sim/simulator.hpp"
+#include "pena_dds/entityPubSubTypes.h"
+#include "pena_dds/line_mapPubSubTypes.h"
+#include "process_support.hpp"
+#include "service_test_support.hpp"
+#include "work_queue.hpp"
+
+namespace pena::services {
+namespace {
+
+using std::chrono::milliseconds;
+
+// A corridor with two rooms; a robot drives 20 m along it (about 160 scans at 4 Hz).
+constexpr const char* kScenario = R"scn(pena-scenario 1
+name services_test
+ceiling 2.7
+rect 0 0 24 8
+wall 0 4 5 4
+wall 6 4 13 4
+wall 14 4 24 4
+wall 12 4 12 8
+entity robot1 robot 2 2 0 speed=0.8
+waypoint robot1 22 2
+waypoint robot1 22 1.5
+waypoint robot1 13.5 1.5
+)scn";
+
+struct Mission {
+  std::filesystem::path entity_dir;
+  std::size_t scans = 0;
+};
+
+const Mission& TestMission() {
+  static const Mission mission = [] {
+    const sim::Scenario scenario = sim::ParseScenario(kScenario, "test:services");
+    const sim::SimulationResult result = sim::Simulator{sim::SimulationOptions{}}.Run(scenario);
+    const std::filesystem::path dir = testing::ScratchDir("mission");
+    sim::WriteMission(scenario, result, dir, "entity_process_test");
+    return Mission{dir / "robot1", result.entities.front().scans};
+  }();
+  return mission;
+}
+
+std::vector<std::string> EntityArgs(int domain, const std::filesystem::path& out, double rate) {
+  const std::filesystem::path dds = std::filesystem::path(PENA_SOURCE_DIR) / "deploy" / "dds";
+  return {PENA_ENTITY_BIN, "--input", TestMission().entity_dir.string(), "--rate",
+          std::to_string(rate), "--domain", std::to_string(domain), "--out", out.string(),
+          "--profiles-file", (dds / "pena-loopback.xml").string(), "--profiles-file",
+          (dds / "pena-qos.xml").string(), "--wait-for-readers", "20", "--linger", "5"};
+}
+
+// What this test subscribes to.
+struct Listener {
+  explicit Listener(int domain)
+      : participant(testing::LoopbackDds(domain), "test-listener"),
+        poses(participant, topics::kPose,
+              [this](pena_dds::EntityPose&& s, const SampleMeta&) { pose_queue.Push(std::move(s)); }),
+        deltas(participant, topics::kLineMapDelta,
+               [this](pena_dds::LineMapDelta&& s, const SampleMeta&) {
+                 delta_queue.Push(std::move(s));
+               }),
+        snapshots(participant, topics::kLineMapSnapshot,
+                  [this](pena_dds::LineMapSnapshot&& s, const SampleMeta&) {
+                    snapshot_queue.Push(std::move(s));
+                  }) {}
+
+  WorkQueue<pena_dds::EntityPose> pose_queue;
+  WorkQueue<pena_dds::LineMapDelta> delta_queue;
+  WorkQueue<pena_dds::LineMapSnapshot> snapshot_queue;
+  Participant participant;
+  Reader<pena_dds::EntityPosePubSubType> poses;
+  Reader<pena_dds::LineMapDeltaPubSubType> deltas;
+  Reader<pena_dds::LineMapSnapshotPubSubType> snapshots;
+};
+
+TEST(EntityProcess, PublishesPosesAndDeltasThatRebuildItsMap) {
+  const int domain = testing::TestDomain(10);
+  Listener listener(domain);
+  const std::filesystem::path out = testing::ScratchDir("run");
+  const pid_t pid = testing::Spawn(EntityArgs(domain, out, 20.0), out / "entity.log");
+  ASSERT_GT(pid, 0);
+  std::vector<pena_dds::EntityPose> poses;
+  line_map::LineMap rebuilt;
+  long deltas = 0;
+  std::optional<pena_dds::LineMapSnapshot> final_snapshot;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(90);
+  while (!final_snapshot && std::chrono::steady_clock::now() < until) {
+    while (auto pose = listener.pose_queue.TryPop()) poses.push_back(std::move(*pose));
+    while (auto delta = listener.delta_queue.TryPop()) {
+      const line_map::ApplyResult applied = rebuilt.Apply(FromDds(*delta));
+      ASSERT_TRUE(applied.ok()) << applied.message;
+      ++deltas;
+    }
+    // The final snapshot comes after the last delta, but on another topic: once it is here,
+    // keep applying deltas until the rebuilt map reaches its version (or 10 s pass).
+    if (auto snapshot = listener.snapshot_queue.PopFor(milliseconds(20))) {
+      const auto patience = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+      while (rebuilt.version() < snapshot->version() &&
+             std::chrono::steady_clock::now() < patience) {
+        if (auto delta = listener.delta_queue.PopFor(milliseconds(50))) {
+          ASSERT_TRUE(rebuilt.Apply(FromDds(*delta)).ok());
+          ++deltas;
+        }
+      }
+      final_snapshot = std::move(snapshot);
+    }
+  }
+  const int code = testing::WaitExit(pid, 30.0);
+  const std::string log = testing::ReadFile(out / "entity.log");
+  ASSERT_EQ(code, 0) << log;
+  ASSERT_TRUE(final_snapshot.has_value()) << log;
+  while (auto pose = listener.pose_queue.TryPop()) poses.push_back(std::move(*pose));
+  // Poses are best effort: nearly all arrive on loopback, in order, for every scan.
+  ASSERT_GE(poses.size(), TestMission().scans * 8 / 10) << log;
+  for (std::size_t i = 1; i < poses.size(); ++i) EXPECT_GT(poses[i].seq(), poses[i - 1].seq());
+  EXPECT_EQ(poses.front().entity_id().to_string(), "robot1");
+  EXPECT_GE(deltas, 2);
+  const line_map::MapSnapshot snapshot = FromDds(*final_snapshot);
+  EXPECT_EQ(rebuilt.version(), snapshot.version);
+  EXPECT_TRUE(line_map::SameMap(rebuilt.Snapshot(), snapshot));
+  EXPECT_GE(snapshot.segments.size(), 4u);
+  // The files the entity wrote agree with what it sent.
+  EXPECT_EQ(io::ReadTum(out / "trajectory.tum").size(), TestMission().scans);
+  EXPECT_EQ(io::ReadLineCsv(out / "line_map.csv").size(), snapshot.segments.size());
+}
+
+TEST(EntityProcess, StopsCleanlyOnSigterm) {
+  const int domain = testing::TestDomain(20);
+  Listener listener(domain);
+  const std::filesystem::path out = testing::ScratchDir("sigterm");
+  const pid_t pid = testing::Spawn(EntityArgs(domain, out, 1.0), out / "entity.log");
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(listener.pose_queue.PopFor(std::chrono::seconds(30)).has_value())
+      << testing::ReadFile(out / "entity.log");
+  kill(pid, SIGTERM);
+  const int code = testing::WaitExit(pid, 20.0);
+  const std::string log = testing::ReadFile(out / "entity.log");
+  EXPECT_EQ(code, 0) << log;
+  EXPECT_NE(log.find("stopped by a signal"), std::string::npos) << log;
+  EXPECT_TRUE(std::filesystem::exists(out / "trajectory.tum"));
+  EXPECT_LT(io::ReadTum(out / "trajectory.tum").size(), TestMission().scans);
+}
+
+TEST(EntityProcess, BadConfigInputOrDdsFailureExitsNonZeroNamingTheCause) {
+  testing::UseLoopbackByDefault();
+  const std::filesystem::path dir = testing::ScratchDir("badconfig");
+  std::ofstream(dir / "entity.conf") << "input: \"x\"\nrat: 10\n";
+  const pid_t pid =
+      testing::Spawn({PENA_ENTITY_BIN, "--config", (dir / "entity.conf").string()}, dir / "log");
+  EXPECT_EQ(testing::WaitExit(pid, 20.0), 1);
+  EXPECT_NE(testing::ReadFile(dir / "log").find("entity.conf:2"), std::string::npos)
+      << testing::ReadFile(dir / "log");
+  const pid_t missing = testing::Spawn({PENA_ENTITY_BIN, "--input", "/nonexistent/sensors.penalog"},
+                                       dir / "log2");
+  EXPECT_EQ(testing::WaitExit(missing, 20.0), 1);
+  EXPECT_NE(testing::ReadFile(dir / "log2").find("/nonexistent/sensors.penalog"),
+            std::string::npos);
+  // A DDS failure (no such participant profile) exits 2 naming the profile.
+  const pid_t dds = testing::Spawn({PENA_ENTITY_BIN, "--input", TestMission().entity_dir.string(),
+                                    "--profile", "no_such_profile"},
+                                   dir / "log3");
+  EXPECT_EQ(testing::WaitExit(dds, 20.0), 2);
+  EXPECT_NE(testing::ReadFile(dir / "log3").find("no_such_profile"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace pena::services

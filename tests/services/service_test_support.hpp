@@ -1,0 +1,61 @@
+#pragma once
+// What the service tests share: the loopback profile, a domain id of their own, scratch dirs.
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "dds_participant.hpp"
+
+namespace pena::services::testing {
+
+// Makes deploy/dds/pena-loopback.xml this process's Fast DDS default (inherited by spawned
+// daemons), so nothing here can run on the built-in default profile.
+inline void UseLoopbackByDefault() {
+  const std::filesystem::path dir = std::filesystem::path(PENA_SOURCE_DIR) / "deploy" / "dds";
+  setenv("FASTRTPS_DEFAULT_PROFILES_FILE", (dir / "pena-loopback.xml").c_str(), 1);
+}
+
+// Every participant of these tests runs on deploy/dds/pena-loopback.xml: the process default
+// and loaded explicitly.
+inline DdsOptions LoopbackDds(int domain_id) {
+  UseLoopbackByDefault();
+  const std::filesystem::path dir = std::filesystem::path(PENA_SOURCE_DIR) / "deploy" / "dds";
+  DdsOptions options;
+  options.profiles_files = {dir / "pena-loopback.xml", dir / "pena-qos.xml"};
+  options.participant_profile = "pena_loopback";
+  options.domain_id = domain_id;
+  return options;
+}
+
+// A DDS domain id no other test process on this machine holds: the first of 100..229 whose lock
+// file /tmp/pena-dds-domain-N.lock this process can flock (held until the process ends, so
+// parallel ctest runs, and other checkouts' tests, never share a domain). `offset` only spreads
+// the starting point.
+inline int TestDomain(int offset = 0) {
+  for (int i = 0; i < 130; ++i) {
+    const int domain = 100 + (offset * 17 + static_cast<int>(getpid()) + i) % 130;
+    const std::string path = "/tmp/pena-dds-domain-" + std::to_string(domain) + ".lock";
+    const int fd = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (fd < 0) continue;
+    if (flock(fd, LOCK_EX | LOCK_NB) == 0) return domain;  // fd stays open: the lock is held
+    close(fd);
+  }
+  throw std::runtime_error("no free DDS test domain in 100..229");
+}
+
+// A fresh scratch directory under /tmp.
+inline std::filesystem::path ScratchDir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("pena-services-test-" + std::to_string(getpid())) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace pena::services::testing
