@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <vector>
 
 #include "grid_test_util.hpp"
 
@@ -100,7 +101,10 @@ TEST(OccupancyGrid, ClampsLogOddsAfterRepeatedEvidence) {
 }
 
 TEST(OccupancyGrid, UpdatesEachCellOncePerScanWithHitsWinning) {
-  const GridOptions options;
+  GridOptions options;
+  // All beams share one bearing, so each "surface" runs along the beams (a fully grazing hit):
+  // switch the grazing skip off to see the plain once-per-scan rule.
+  options.surface_band_m = 0.0;
   OccupancyGrid grid(options);
   // Three beams on one cell, and a fourth along the same bearing passing through it to 2 m.
   ASSERT_TRUE(grid.Insert(MakeScan({1.0f, 1.0f, 1.0f, 2.0f}), CellCentre(0, 0)));
@@ -114,14 +118,62 @@ TEST(OccupancyGrid, NoReturnClearsOnlyUpToTheLimit) {
   GridOptions options;
   options.no_return_clear_m = 1.0;
   OccupancyGrid grid(options);
-  // +inf and a range at the sensor's maximum are both no-returns.
-  ASSERT_TRUE(grid.Insert(MakeScan({kInf, 30.0f}), CellCentre(0, 0)));
+  // +inf and a range at the sensor's maximum are both no-returns; a third beam (along -x) returns
+  // at 5 m, so the scan demonstrably saw beyond the 1 m limit.
+  ASSERT_TRUE(
+      grid.Insert(MakeScan({kInf, 30.0f, 5.0f}, 0.0, std::numbers::pi / 2), CellCentre(0, 0)));
   for (int i = 0; i <= 20; ++i)
     EXPECT_NEAR(grid.LogOdds({i, 0}), options.miss_log_odds, kFloatTolerance) << i;
   EXPECT_EQ(grid.LogOdds({21, 0}), 0.0);
-  ForEachCell(grid, [](const Eigen::Vector2i& cell, double value) {
-    EXPECT_LE(value, 0.0) << cell.transpose();
+  EXPECT_NEAR(grid.LogOdds({0, 20}), options.miss_log_odds, kFloatTolerance);
+  EXPECT_EQ(grid.LogOdds({0, 21}), 0.0);
+  const Eigen::Vector2i hit = grid.CellOf({0.025 - 5.0, 0.025});
+  ForEachCell(grid, [&hit](const Eigen::Vector2i& cell, double value) {
+    if (cell != hit) {
+      EXPECT_LE(value, 0.0) << cell.transpose();
+    }
   });
+}
+
+TEST(OccupancyGrid, NoReturnsClearOnlyAsFarAsTheScanSaw) {
+  // In smoke the laser sees 2.5 m and reports no-returns beyond: those must not clear the wall
+  // 3.5 m away that the entity saw before from outside the smoke.
+  const GridOptions options;  // no_return_clear_m = 5 m
+  OccupancyGrid grid(options);
+  for (int k = 0; k < 3; ++k) ASSERT_TRUE(grid.Insert(MakeScan({3.5f}), CellCentre(0, 0)));
+  const Eigen::Vector2i wall = grid.CellOf({0.025 + 3.5, 0.025});
+  ASSERT_GT(grid.Probability(wall), 0.8);
+  // Smoke: the farthest return of each scan is 2 m (beam at 90 deg), the beam along +x is empty.
+  for (int k = 0; k < 20; ++k) {
+    ASSERT_TRUE(grid.Insert(MakeScan({kInf, 2.0f}, 0.0, std::numbers::pi / 2), CellCentre(0, 0)));
+  }
+  EXPECT_GT(grid.Probability(wall), 0.8);
+  EXPECT_LT(grid.Probability({39, 0}), 0.2);  // within the 2 m reach: cleared further
+  EXPECT_NEAR(grid.LogOdds({50, 0}), 3 * options.miss_log_odds, kFloatTolerance);  // untouched
+}
+
+TEST(OccupancyGrid, WallSeenAtAGrazingAngleIsNotClearedByItsOwnBeams) {
+  // A wall along y = 0.025 (the middle of cell row 0) seen from 1 m beside it while walking
+  // along it: beams hit it at 4-15 deg and each runs inside row 0 for 0.1-0.36 m before its hit.
+  const auto occupied_fraction = [](double surface_band_m) {
+    GridOptions options;
+    options.surface_band_m = surface_band_m;
+    OccupancyGrid grid(options);
+    constexpr double kDeg = std::numbers::pi / 180.0;
+    for (int step = 0; step < 40; ++step) {
+      std::vector<float> ranges;
+      for (double angle_deg = 4.0; angle_deg <= 15.0; angle_deg += 0.5) {
+        ranges.push_back(static_cast<float>(1.0 / std::sin(angle_deg * kDeg)));
+      }
+      const geometry::Pose2 pose{0.1 * step, 1.025, -4.0 * kDeg};
+      EXPECT_TRUE(grid.Insert(MakeScan(ranges, 0.0, -0.5 * kDeg), pose));
+    }
+    int occupied = 0, cells = 0;
+    for (int i = 120; i < 160; ++i, ++cells) occupied += grid.Probability({i, 0}) > 0.65 ? 1 : 0;
+    return static_cast<double>(occupied) / cells;
+  };
+  EXPECT_GT(occupied_fraction(0.05), 0.9);
+  EXPECT_LT(occupied_fraction(0.0), 0.5);  // without the skip the misses erase the wall
 }
 
 TEST(OccupancyGrid, ZeroClearingLimitLeavesNoReturnsUnused) {
@@ -209,6 +261,34 @@ TEST(OccupancyGrid, RejectsInvalidOptionsNamingTheField) {
   options = {};
   options.no_return_clear_m = std::nan("");
   EXPECT_THROW(OccupancyGrid{options}, std::invalid_argument);
+  options = {};
+  options.surface_band_m = -0.01;
+  EXPECT_THROW(OccupancyGrid{options}, std::invalid_argument);
+  options = {};
+  options.max_surface_skip_m = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(OccupancyGrid{options}, std::invalid_argument);
+}
+
+TEST(OccupancyGrid, ImageRecordsHitCountsAndFirstAndLastHittingScans) {
+  OccupancyGrid grid;
+  ASSERT_TRUE(grid.Insert(MakeScan({2.0f}), CellCentre(0, 0)));  // scan 1: a miss at cell 20
+  for (int k = 0; k < 3; ++k) ASSERT_TRUE(grid.Insert(MakeScan({1.0f}), CellCentre(0, 0)));
+  const GridImage image = grid.ToImage();
+  const auto pixel = [&](int i, int j) {
+    return cv::Point(i - grid.min_cell().x(), grid.height() - 1 - (j - grid.min_cell().y()));
+  };
+  EXPECT_EQ(image.hit_counts.at<std::uint16_t>(pixel(20, 0)), 3);
+  EXPECT_EQ(image.first_hit_scans.at<std::int32_t>(pixel(20, 0)), 2);
+  EXPECT_EQ(image.last_hit_scans.at<std::int32_t>(pixel(20, 0)), 4);
+  EXPECT_EQ(image.hit_counts.at<std::uint16_t>(pixel(40, 0)), 1);   // scan 1's hit
+  EXPECT_EQ(image.first_hit_scans.at<std::int32_t>(pixel(40, 0)), 1);
+  EXPECT_EQ(image.hit_counts.at<std::uint16_t>(pixel(10, 0)), 0);   // only crossed
+  EXPECT_EQ(image.last_hit_scans.at<std::int32_t>(pixel(10, 0)), 0);
+  // Growing the grid keeps the records.
+  ASSERT_TRUE(grid.Insert(MakeScan({1.0f}), CellCentre(-200, -200)));
+  const GridImage grown = grid.ToImage();
+  EXPECT_EQ(grown.hit_counts.at<std::uint16_t>(pixel(20, 0)), 3);
+  EXPECT_EQ(grown.last_hit_scans.at<std::int32_t>(pixel(20, 0)), 4);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // pena map: mapping with known (or estimated) poses. Inserts every scan of a log into one global
-// occupancy grid, extracts the line map (paper section 3) and writes DIR/lines.csv, lines.svg,
-// grid.pgm + grid.yaml (ROS map_server) and map.png. Options and outputs: docs/line-extraction.md.
+// occupancy grid, extracts the line map (paper section 3), merges it in a LineMap, and writes
+// DIR/lines.csv, lines.svg, lines.dxf, grid.pgm + grid.yaml (ROS map_server) and map.png. With
+// --online the line map is built as an entity does: from a local grid that moves with it,
+// extracted at each recentre and merged. Options and outputs: docs/line-map.md.
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,13 +21,17 @@
 
 #include "cli_support.hpp"
 #include "commands.hpp"
+#include "pena/grid/local_grid.hpp"
 #include "pena/grid/occupancy_grid.hpp"
+#include "pena/io/dxf_writer.hpp"
 #include "pena/io/line_csv.hpp"
+#include "pena/io/line_map_codec.hpp"
 #include "pena/io/line_svg.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/ros_map.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/line_map/line_extractor.hpp"
+#include "pena/line_map/line_map.hpp"
 #include "pena/odometry/laser_odometry.hpp"
 #include "pena/viz/map_canvas.hpp"
 
@@ -40,6 +46,7 @@ struct MapArgs {
   std::string trajectory;
   std::string out;
   double resolution_m = 0.05;
+  bool online = false;
   bool quiet = false;
   io::ReadOptions read;
 };
@@ -66,6 +73,10 @@ std::optional<geometry::Pose2> PoseAt(const geometry::Trajectory& trajectory, do
 struct MapRun {
   explicit MapRun(const grid::GridOptions& options) : grid(options) {}
   grid::OccupancyGrid grid;
+  std::optional<grid::LocalGrid> local;  // --online: the window that moves with the entity
+  line_map::LineMap map;                 // the merged line map
+  std::string source = "map";            // provenance of its segments: the log's entity id
+  long extractions = 0;
   std::string pose_source;  // "trajectory", "logged poses", "odometry"
   long scans = 0;
   long used = 0;
@@ -141,6 +152,22 @@ class PoseFeeder {
     } else {
       ++run_.refused;
     }
+    if (args_.online) FeedLocal(*scan, *pose);
+  }
+
+  // The paper's online mode: the local grid is segmented into lines when the entity nears its
+  // edge, and the lines merge into the map (so revisits do not grow it).
+  void FeedLocal(const sensors::LaserScan& scan, const geometry::Pose2& pose) {
+    if (!run_.local) {
+      grid::LocalGridOptions options;
+      options.grid = run_.grid.options();
+      run_.local.emplace(options, Eigen::Vector2d(pose.x_m, pose.y_m));
+    }
+    if (run_.local->NeedsRecentre(pose)) {
+      run_.map.Integrate(line_map::ExtractLines(run_.local->Recentre(pose)), run_.source);
+      ++run_.extractions;
+    }
+    run_.local->Insert(scan, pose);
   }
 
   const MapArgs& args_;
@@ -167,6 +194,7 @@ void WriteLines(const std::filesystem::path& out_dir,
   }
   io::WriteLineCsv(out_dir / "lines.csv", rows, ",support_cells,rms_error_m");
   io::WriteLineSvg(out_dir / "lines.svg", {{"lines", "#d62728", 0.05, Segments(lines)}});
+  io::WriteLineDxf(out_dir / "lines.dxf", Segments(lines), "PENA_LINES");
 }
 
 // The grid in grey levels (occupied dark, free near white, unknown mid grey) with the lines drawn
@@ -216,9 +244,17 @@ double TotalLength(const std::vector<line_map::LineSegment>& lines) {
   return length_m;
 }
 
+// Sizes of the map in bytes: the CSV file, the line map as the services send it (a snapshot in
+// the line-map codec), the grid as a PNG.
+struct MapBytes {
+  std::size_t csv = 0;
+  std::size_t codec = 0;
+  std::size_t png = 0;
+};
+
 void PrintSummary(const MapRun& run, const grid::GridImage& image,
-                  const std::vector<line_map::LineSegment>& lines, std::size_t csv_bytes,
-                  std::size_t png_bytes, double extract_s, double write_s) {
+                  const std::vector<line_map::LineSegment>& lines, const MapBytes& bytes,
+                  double extract_s, double write_s) {
   std::cout << "poses: " << run.pose_source << "; " << run.scans << " scans, " << run.used
             << " used, " << run.skipped_no_pose << " skipped (no pose)";
   if (run.refused > 0) std::cout << ", " << run.refused << " refused by the grid";
@@ -227,12 +263,17 @@ void PrintSummary(const MapRun& run, const grid::GridImage& image,
             << Fixed(image.occupancy.cols * image.resolution_m, 1) << " x "
             << Fixed(image.occupancy.rows * image.resolution_m, 1) << " m)\n";
   std::cout << lines.size() << " segments, total length " << Fixed(TotalLength(lines), 1)
-            << " m\n";
-  std::cout << "lines.csv " << csv_bytes << " bytes vs grid PNG " << png_bytes << " bytes (ratio "
-            << Fixed(png_bytes > 0 ? static_cast<double>(csv_bytes) / static_cast<double>(png_bytes)
-                                   : 0.0,
-                     3)
-            << ")\n";
+            << " m" << (run.local ? " (online: " + std::to_string(run.extractions) +
+                                        " local-grid extractions merged)"
+                                  : std::string())
+            << "\n";
+  std::cout << "line map " << bytes.codec << " bytes (line-map codec snapshot; lines.csv "
+            << bytes.csv << ") vs grid PNG " << bytes.png << " bytes: "
+            << Fixed(bytes.codec > 0 ? static_cast<double>(bytes.png) /
+                                           static_cast<double>(bytes.codec)
+                                     : 0.0,
+                     1)
+            << " times smaller\n";
   std::cout << "time: grid " << Fixed(run.wall_s, 2) << " s, extraction " << Fixed(extract_s, 3)
             << " s, writing " << Fixed(write_s, 2) << " s\n";
 }
@@ -247,11 +288,15 @@ void RunMap(const MapArgs& args) {
   grid::GridOptions grid_options;
   grid_options.resolution_m = args.resolution_m;
   MapRun run(grid_options);
+  if (!source->description().entity_id.empty()) run.source = source->description().entity_id;
   PoseFeeder(args, trajectory, *source, run).Run();
   if (run.used == 0) throw std::runtime_error(args.log + ": no scan could be placed in the grid");
   const auto extract_start = Clock::now();
   const grid::GridImage image = run.grid.ToImage();
-  const std::vector<line_map::LineSegment> lines = line_map::ExtractLines(image);
+  // Offline: one extraction from the whole grid; online: the last window's. Either way through
+  // the LineMap, which joins the pieces of one wall (docs/line-map.md).
+  run.map.Integrate(line_map::ExtractLines(run.local ? run.local->ToImage() : image), run.source);
+  const std::vector<line_map::LineSegment> lines = run.map.segments();
   const double extract_s = SecondsSince(extract_start);
   const auto write_start = Clock::now();
   const std::filesystem::path out_dir(args.out);
@@ -262,9 +307,9 @@ void RunMap(const MapArgs& args) {
   if (!cv::imwrite(picture, RenderMap(image, lines))) {
     throw std::runtime_error(picture + ": cannot write the PNG");
   }
-  const std::size_t png_bytes = PngBytes(image.occupancy);
-  const std::size_t csv_bytes = std::filesystem::file_size(out_dir / "lines.csv");
-  PrintSummary(run, image, lines, csv_bytes, png_bytes, extract_s, SecondsSince(write_start));
+  const MapBytes bytes{std::filesystem::file_size(out_dir / "lines.csv"),
+                       io::EncodeSnapshot(run.map.Snapshot()).size(), PngBytes(image.occupancy)};
+  PrintSummary(run, image, lines, bytes, extract_s, SecondsSince(write_start));
 }
 
 }  // namespace
@@ -272,7 +317,8 @@ void RunMap(const MapArgs& args) {
 void AddMapCommand(CLI::App& app) {
   auto args = std::make_shared<MapArgs>();
   CLI::App* command = app.add_subcommand(
-      "map", "Build the occupancy grid and line map of a log: lines.csv/svg, grid.pgm/yaml, PNG");
+      "map",
+      "Build the occupancy grid and line map of a log: lines.csv/svg/dxf, grid.pgm/yaml, PNG");
   command->add_option("--log", args->log, "Input log: CARMEN (.clf/.log, plain or gzip) or PeNa")
       ->required();
   command->add_option("--trajectory", args->trajectory,
@@ -289,6 +335,9 @@ void AddMapCommand(CLI::App& app) {
                    "CARMEN maximum range, metres: ranges at or above it are no-returns")
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
+  command->add_flag("--online", args->online,
+                    "Build the line map as an entity does: a 20 m local grid moving with it, "
+                    "extracted at each recentre and merged (the paper's online mode)");
   command->add_flag("--quiet", args->quiet, "No progress line on stderr");
   command->callback([args] { RunMap(*args); });
 }

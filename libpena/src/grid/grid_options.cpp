@@ -33,6 +33,10 @@ void ValidateGridOptions(const GridOptions& options) {
           "no_return_clear_m", "finite and >= 0 m", options.no_return_clear_m);
   Require(std::isfinite(options.max_range_m) && options.max_range_m > 0.0, "max_range_m",
           "finite and > 0 m", options.max_range_m);
+  Require(std::isfinite(options.surface_band_m) && options.surface_band_m >= 0.0, "surface_band_m",
+          "finite and >= 0 m", options.surface_band_m);
+  Require(std::isfinite(options.max_surface_skip_m) && options.max_surface_skip_m >= 0.0,
+          "max_surface_skip_m", "finite and >= 0 m", options.max_surface_skip_m);
   Require(std::isfinite(options.max_size_m) && options.max_size_m >= options.resolution_m,
           "max_size_m", "finite and >= resolution_m (m)", options.max_size_m);
   // Cells are indexed with int; keep the largest grid well inside it.

@@ -24,6 +24,9 @@ LogOddsCells::LogOddsCells(const Eigen::Vector2i& min_cell, int width, int heigh
   const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   log_odds_.assign(count, 0.0f);
   stamps_.assign(count, 0);
+  hit_counts_.assign(count, 0);
+  first_hit_scans_.assign(count, 0);
+  last_hit_scans_.assign(count, 0);
 }
 
 std::size_t LogOddsCells::Index(int local_x, int local_y) const {
@@ -42,12 +45,18 @@ void LogOddsCells::Reframe(const Eigen::Vector2i& min_cell, int width, int heigh
   const Eigen::Vector2i low = min_cell_.cwiseMax(min_cell);
   const Eigen::Vector2i high = (min_cell_ + Eigen::Vector2i(width_, height_))
                                    .cwiseMin(min_cell + Eigen::Vector2i(width, height));
-  for (int y = low.y(); y < high.y(); ++y) {
-    const auto from = log_odds_.begin() + static_cast<std::ptrdiff_t>(
-                                              Index(low.x() - min_cell_.x(), y - min_cell_.y()));
-    const auto to = moved.log_odds_.begin() + static_cast<std::ptrdiff_t>(moved.Index(
-                                                  low.x() - min_cell.x(), y - min_cell.y()));
+  const auto copy_row = [&](const auto& from_cells, auto& to_cells, int y) {
+    const auto from = from_cells.begin() + static_cast<std::ptrdiff_t>(
+                                               Index(low.x() - min_cell_.x(), y - min_cell_.y()));
+    const auto to = to_cells.begin() + static_cast<std::ptrdiff_t>(
+                                           moved.Index(low.x() - min_cell.x(), y - min_cell.y()));
     std::copy(from, from + (high.x() - low.x()), to);
+  };
+  for (int y = low.y(); y < high.y(); ++y) {
+    copy_row(log_odds_, moved.log_odds_, y);
+    copy_row(hit_counts_, moved.hit_counts_, y);
+    copy_row(first_hit_scans_, moved.first_hit_scans_, y);
+    copy_row(last_hit_scans_, moved.last_hit_scans_, y);
   }
   moved.scan_ = scan_;
   *this = std::move(moved);
@@ -55,8 +64,11 @@ void LogOddsCells::Reframe(const Eigen::Vector2i& min_cell, int width, int heigh
 
 void LogOddsCells::AdvanceStamp() {
   // Stamps compare against 2 * scan_; restart all of them before that would overflow.
+  // (2^31 scans: years of scanning; the last-hit numbers then restart too, as int32 needs.)
   if (scan_ >= std::numeric_limits<std::uint32_t>::max() / 2 - 1) {
     std::fill(stamps_.begin(), stamps_.end(), 0u);
+    std::fill(first_hit_scans_.begin(), first_hit_scans_.end(), 0);
+    std::fill(last_hit_scans_.begin(), last_hit_scans_.end(), 0);
     scan_ = 0;
   }
   ++scan_;
@@ -70,7 +82,8 @@ void LogOddsCells::Insert(const ScanRays& rays, const GridOptions& options) {
   // Hits first, so the rays of other beams do not clear a cell this scan saw occupied.
   ApplyHits(rays, hit, static_cast<float>(options.max_log_odds));
   const auto min_value = static_cast<float>(options.min_log_odds);
-  for (const Eigen::Vector2i& end : rays.hit_cells) {
+  // Each return clears up to its free end (before its hit cell, or earlier for a grazing beam).
+  for (const Eigen::Vector2i& end : rays.free_end_cells) {
     CastFree(rays.origin_cell, end, false, miss, min_value);
   }
   for (const Eigen::Vector2i& end : rays.clear_cells) {
@@ -86,6 +99,9 @@ void LogOddsCells::ApplyHits(const ScanRays& rays, float hit, float max_value) {
     if (stamps_[index] == hit_stamp) continue;  // several beams on one cell count once
     stamps_[index] = hit_stamp;
     log_odds_[index] = std::min(log_odds_[index] + hit, max_value);
+    if (hit_counts_[index] < std::numeric_limits<std::uint16_t>::max()) ++hit_counts_[index];
+    if (first_hit_scans_[index] == 0) first_hit_scans_[index] = static_cast<std::int32_t>(scan_);
+    last_hit_scans_[index] = static_cast<std::int32_t>(scan_);
   }
 }
 
@@ -130,6 +146,9 @@ GridImage LogOddsCells::ToImage(double resolution_m) const {
   image.resolution_m = resolution_m;
   image.origin_m = min_cell_.cast<double>() * resolution_m;
   image.occupancy = cv::Mat(height_, width_, CV_8UC1);
+  image.hit_counts = cv::Mat(height_, width_, CV_16UC1);
+  image.first_hit_scans = cv::Mat(height_, width_, CV_32SC1);
+  image.last_hit_scans = cv::Mat(height_, width_, CV_32SC1);
   // Image row 0 is the top of the grid (largest y), see grid_image.hpp.
   for (int row = 0; row < height_; ++row) {
     auto* pixels = image.occupancy.ptr<std::uint8_t>(row);
@@ -137,6 +156,12 @@ GridImage LogOddsCells::ToImage(double resolution_m) const {
     for (int col = 0; col < width_; ++col) {
       pixels[col] = PixelOf(log_odds_[offset + static_cast<std::size_t>(col)]);
     }
+    std::copy_n(hit_counts_.begin() + static_cast<std::ptrdiff_t>(offset), width_,
+                image.hit_counts.ptr<std::uint16_t>(row));
+    std::copy_n(first_hit_scans_.begin() + static_cast<std::ptrdiff_t>(offset), width_,
+                image.first_hit_scans.ptr<std::int32_t>(row));
+    std::copy_n(last_hit_scans_.begin() + static_cast<std::ptrdiff_t>(offset), width_,
+                image.last_hit_scans.ptr<std::int32_t>(row));
   }
   return image;
 }

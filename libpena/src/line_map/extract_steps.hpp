@@ -59,4 +59,17 @@ std::vector<Piece> SplitChain(const PixelChain& chain, const GridFrame& frame,
 std::vector<Piece> MergeCollinear(std::vector<Piece> pieces, const GridFrame& frame, double gap_m,
                                   double angle_rad, double split_distance_m);
 
+// Per pixel (CV_32SC1, the skeleton's size): the index of the piece owning the nearest skeleton
+// pixel when that pixel is within `max_distance_m`, else -1. A discrete Voronoi diagram of the
+// skeleton; where pieces share a pixel (a split or junction), the later piece owns it.
+cv::Mat PieceOwners(const std::vector<Piece>& pieces, const cv::Mat& skeleton,
+                    const GridFrame& frame, double max_distance_m);
+
+// Moves each piece's fitted ends outwards along its line over the occupied cells that continue it
+// (within one cell of the line, gaps up to `gap_m`), stopping before cells owned by another piece
+// whose direction is within `angle_rad` (its own wall). Thinning and the closing shorten a wall
+// at its ends and at junctions; sparse dots of a wall seen at a grazing angle continue it.
+void ExtendEnds(std::vector<Piece>& pieces, const cv::Mat& occupied, const cv::Mat& owners,
+                const GridFrame& frame, double gap_m, double angle_rad);
+
 }  // namespace pena::line_map::internal

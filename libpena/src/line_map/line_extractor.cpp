@@ -1,5 +1,6 @@
 #include "pena/line_map/line_extractor.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -103,42 +104,75 @@ std::vector<Piece> StraightPieces(const cv::Mat& skeleton, const GridFrame& fram
   return pieces;
 }
 
+// Per segment: what supports it (the cells, their hits, the scans that last hit them).
+struct Support {
+  double cells = 0.0;
+  double hits = 0.0;
+  double sum_sq_m2 = 0.0;
+  std::vector<std::int32_t> scans;
+};
+
 // Each occupied cell within the split distance supports the segment of its nearest skeleton
 // pixel (a discrete Voronoi diagram of the skeleton); its distance to the line gives the RMS.
-std::vector<LineSegment> WithSupport(const std::vector<Piece>& pieces, const cv::Mat& occupied,
-                                     const cv::Mat& skeleton, const GridFrame& frame,
-                                     double split_distance_m) {
-  cv::Mat off_skeleton, distance_px, labels;
-  cv::compare(skeleton, 0, off_skeleton, cv::CMP_EQ);
-  cv::distanceTransform(off_skeleton, distance_px, labels, cv::DIST_L2, cv::DIST_MASK_5,
-                        cv::DIST_LABEL_PIXEL);
-  std::vector<int> segment_of_label(static_cast<std::size_t>(cv::countNonZero(skeleton)) + 1, -1);
-  for (std::size_t s = 0; s < pieces.size(); ++s) {
-    for (const cv::Point& pixel : pieces[s].pixels) {
-      segment_of_label[static_cast<std::size_t>(labels.at<int>(pixel))] = static_cast<int>(s);
-    }
-  }
-  std::vector<LineSegment> segments(pieces.size());
-  std::vector<double> sum_sq_m2(pieces.size(), 0.0);
+std::vector<Support> SupportOf(const std::vector<Piece>& pieces, const grid::GridImage& grid,
+                               const cv::Mat& occupied, const cv::Mat& owners,
+                               const GridFrame& frame) {
+  const bool has_hits = grid.hit_counts.size() == grid.occupancy.size();
+  const bool has_scans = grid.first_hit_scans.size() == grid.occupancy.size() &&
+                         grid.last_hit_scans.size() == grid.occupancy.size();
+  std::vector<Support> support(pieces.size());
   std::vector<cv::Point> cells;
   cv::findNonZero(occupied, cells);
   for (const cv::Point& cell : cells) {
-    if (distance_px.at<float>(cell) * frame.resolution_m > split_distance_m) continue;
-    const int s = segment_of_label[static_cast<std::size_t>(labels.at<int>(cell))];
+    const int s = owners.at<std::int32_t>(cell);
     if (s < 0) continue;
-    const auto index = static_cast<std::size_t>(s);
-    segments[index].support_cells += 1.0;
-    const double d_m = geometry::DistanceToSegment(pieces[index].fit.segment, frame.ToWorld(cell));
-    sum_sq_m2[index] += d_m * d_m;
-  }
-  for (std::size_t s = 0; s < pieces.size(); ++s) {
-    segments[s].id = static_cast<std::int64_t>(s);
-    segments[s].segment = pieces[s].fit.segment;
-    // The grid image holds no hit counts; each occupied cell was hit at least once.
-    segments[s].observations = segments[s].support_cells;
-    if (segments[s].support_cells > 0.0) {
-      segments[s].rms_error_m = std::sqrt(sum_sq_m2[s] / segments[s].support_cells);
+    Support& of = support[static_cast<std::size_t>(s)];
+    of.cells += 1.0;
+    // The grid image may hold no hit counts: each occupied cell was hit at least once.
+    of.hits += has_hits ? grid.hit_counts.at<std::uint16_t>(cell) : 1.0;
+    if (has_scans) {
+      of.scans.push_back(grid.first_hit_scans.at<std::int32_t>(cell));
+      of.scans.push_back(grid.last_hit_scans.at<std::int32_t>(cell));
     }
+    const double d_m =
+        geometry::DistanceToSegment(pieces[static_cast<std::size_t>(s)].fit.segment,
+                                    frame.ToWorld(cell));
+    of.sum_sq_m2 += d_m * d_m;
+  }
+  return support;
+}
+
+// How many different scans first or last hit the supporting cells: a lower bound of the scans that
+// hit them, exact up to 2 (one scan alone leaves first == last everywhere).
+std::size_t DistinctScans(std::vector<std::int32_t> scans) {
+  std::sort(scans.begin(), scans.end());
+  scans.erase(std::unique(scans.begin(), scans.end()), scans.end());
+  std::erase(scans, 0);
+  return scans.size();
+}
+
+// The segments with their support; those resting on fewer than min_scans scans are dropped
+// (floor reflections, see LineExtractionOptions::min_scans).
+std::vector<LineSegment> WithSupport(const std::vector<Piece>& pieces,
+                                     const std::vector<Support>& support,
+                                     const grid::GridImage& grid, int min_scans) {
+  const bool has_scans = grid.first_hit_scans.size() == grid.occupancy.size() &&
+                         grid.last_hit_scans.size() == grid.occupancy.size();
+  std::vector<LineSegment> segments;
+  for (std::size_t s = 0; s < pieces.size(); ++s) {
+    if (has_scans && min_scans > 1 &&
+        DistinctScans(support[s].scans) < static_cast<std::size_t>(min_scans)) {
+      continue;
+    }
+    LineSegment segment;
+    segment.id = static_cast<std::int64_t>(segments.size());
+    segment.segment = pieces[s].fit.segment;
+    segment.support_cells = support[s].cells;
+    segment.observations = support[s].hits;
+    if (support[s].cells > 0.0) {
+      segment.rms_error_m = std::sqrt(support[s].sum_sq_m2 / support[s].cells);
+    }
+    segments.push_back(std::move(segment));
   }
   return segments;
 }
@@ -160,6 +194,7 @@ void ValidateLineExtractionOptions(const LineExtractionOptions& o) {
           "in [0, pi/2] rad", o.merge_angle_rad);
   Require(o.min_length_m >= 0.0 && std::isfinite(o.min_length_m), "min_length_m",
           ">= 0 m and finite", o.min_length_m);
+  Require(o.min_scans >= 0, "min_scans", ">= 0 (scans)", o.min_scans);
 }
 
 std::vector<LineSegment> ExtractLines(const grid::GridImage& grid,
@@ -170,14 +205,27 @@ std::vector<LineSegment> ExtractLines(const grid::GridImage& grid,
   }
   Require(grid.resolution_m > 0.0 && std::isfinite(grid.resolution_m), "grid.resolution_m",
           "> 0 m and finite", grid.resolution_m);
+  const auto check_layer = [&grid](const cv::Mat& layer, int type, const char* what) {
+    if (!layer.empty() && (layer.type() != type || layer.size() != grid.occupancy.size())) {
+      throw std::invalid_argument(std::string("line_extraction: grid.") + what +
+                                  " must be empty or match occupancy in size, with its type");
+    }
+  };
+  check_layer(grid.hit_counts, CV_16UC1, "hit_counts");
+  check_layer(grid.first_hit_scans, CV_32SC1, "first_hit_scans");
+  check_layer(grid.last_hit_scans, CV_32SC1, "last_hit_scans");
   if (grid.occupancy.empty()) return {};
   const GridFrame frame{grid.origin_m, grid.resolution_m, grid.occupancy.rows};
   const cv::Mat occupied = Threshold(grid.occupancy, options.occupied_probability);
   const cv::Mat closed = Close(occupied, Cells(options.closing_radius_m, grid.resolution_m));
   const cv::Mat walls = RemoveSpeckle(closed, options.min_blob_m / grid.resolution_m);
   const cv::Mat skeleton = PrunedSkeleton(walls, options.min_length_m / grid.resolution_m);
-  const std::vector<Piece> pieces = StraightPieces(skeleton, frame, options);
-  return WithSupport(pieces, occupied, skeleton, frame, options.split_distance_m);
+  std::vector<Piece> pieces = StraightPieces(skeleton, frame, options);
+  const cv::Mat owners = internal::PieceOwners(pieces, skeleton, frame, options.split_distance_m);
+  internal::ExtendEnds(pieces, occupied, owners, frame, options.merge_gap_m,
+                       options.merge_angle_rad);
+  const std::vector<Support> support = SupportOf(pieces, grid, occupied, owners, frame);
+  return WithSupport(pieces, support, grid, options.min_scans);
 }
 
 }  // namespace pena::line_map

@@ -12,7 +12,7 @@ namespace pena::eval {
 // Tolerances of the comparison.
 struct LineMapErrorOptions {
   double distance_m = 0.10;     // a point matches a segment within this distance
-  double angle_rad = 0.1745;    // coverage also needs directions within this (10 deg)
+  double angle_rad = 0.17453292519943295;  // coverage also needs directions within this (10 deg)
   double sample_step_m = 0.01;  // segments are judged at points at most this far apart
   // A map segment counts as a fragment of a wall when it covers at least this much of it (or half
   // of a wall shorter than twice this), so a neighbour's end grazing a wall is not a fragment (an

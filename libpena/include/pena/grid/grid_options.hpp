@@ -13,6 +13,11 @@ struct GridOptions {
   double no_return_clear_m =
       5.0;                     // a beam without a usable return clears this far (0 = not at all)
   double max_range_m = 30.0;   // returns at or beyond this are untrusted and used as no-returns
+  // A return does not clear the cells within this distance of the surface it hit: a beam grazing
+  // a wall runs inside the wall's cells for surface_band_m / sin(incidence) before its hit, and
+  // would otherwise clear the wall that other beams hit (docs/grid.md). 0 = off.
+  double surface_band_m = 0.05;
+  double max_surface_skip_m = 1.0;  // cap on that uncleared length of one beam
   double max_size_m = 2000.0;  // largest side the grid may grow to; scans needing more are refused
 };
 

@@ -34,7 +34,8 @@ class LogOddsCells {
   // a miss (free). Cells outside the bounds are skipped.
   void Insert(const ScanRays& rays, const GridOptions& options);
 
-  // The cells as an image (0 free, 255 occupied, 128 unknown) with its world origin.
+  // The cells as an image (0 free, 255 occupied, 128 unknown) with its world origin, plus each
+  // cell's hit count and first and last hitting scan.
   GridImage ToImage(double resolution_m) const;
 
   const Eigen::Vector2i& min_cell() const { return min_cell_; }
@@ -55,6 +56,10 @@ class LogOddsCells {
   // Per cell, the stamp of the last scan that updated it: 2 * scan for a miss, 2 * scan + 1 for
   // a hit, so one comparison tells whether the current scan already touched it.
   std::vector<std::uint32_t> stamps_;
+  std::vector<std::uint16_t> hit_counts_;  // laser hits per cell, saturating
+  // scan_ of the first and of the last scan that hit the cell (0: none).
+  std::vector<std::int32_t> first_hit_scans_;
+  std::vector<std::int32_t> last_hit_scans_;
   std::uint32_t scan_ = 0;
 };
 
