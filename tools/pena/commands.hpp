@@ -11,5 +11,6 @@ void AddEvalCommand(CLI::App& app);      // pena eval --trajectory T (--relation
 void AddSimulateCommand(CLI::App& app);  // pena simulate --scenario NAME|FILE --seed N --out DIR
 void AddOdometryCommand(CLI::App& app);  // pena odometry --log LOG --out DIR
 void AddMapCommand(CLI::App& app);       // pena map --log LOG [--trajectory T] --out DIR
+void AddLocaliseCommand(CLI::App& app);  // pena localise --log LOG --map PLAN --out DIR
 
 }  // namespace pena::cli

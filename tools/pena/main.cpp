@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   pena::cli::AddExportCommand(app);
   pena::cli::AddOdometryCommand(app);
   pena::cli::AddMapCommand(app);
+  pena::cli::AddLocaliseCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -1,0 +1,84 @@
+#pragma once
+// Global localisation on an a priori plan (beyond the paper, whose method needs a known start):
+// the plan's segments are sampled into reference points, and a scan is matched against the whole
+// plan with the correlation matcher's branch-and-bound search over every position and heading,
+// one search per tile of the plan so that distinct places yield distinct ranked hypotheses. Each
+// hypothesis is then refined with a fine local match. Given the whole laser scan, hypotheses are
+// ranked by how well the virtual scan from them agrees beam by beam with the real one: unlike the
+// point score, this counts beams that pass through a plan wall against a place, which separates
+// the look-alike stretches of a corridor with evenly spaced doors.
+
+#include <memory>
+#include <vector>
+
+#include "pena/geometry/pose2.hpp"
+#include "pena/geometry/segment2.hpp"
+#include "pena/scan_matching/correlation_scan_matcher.hpp"
+#include "pena/scan_matching/point_set.hpp"
+#include "pena/sensors/laser_scan.hpp"
+
+namespace pena::localisation {
+
+// Options; validated by the constructor (messages name field and unit).
+struct GlobalLocaliserOptions {
+  double sample_spacing_m = 0.05;  // reference points along every plan segment
+  // Coarse whole-plan search: a wide threshold so a coarse grid pose still scores.
+  scan_matching::CorrelationMatcherOptions coarse{0.15, 0.05, 0, 10, true};
+  double coarse_step_xy_m = 0.10;
+  double coarse_step_theta_rad = 0.017453292519943295;  // 1 deg
+  double tile_size_m = 3.0;    // one hypothesis per tile at most
+  double margin_m = 1.0;       // the searched area extends this far beyond the plan's box
+  int max_hypotheses = 5;      // ranked hypotheses refined and returned
+  // Fine refinement around each coarse pose.
+  scan_matching::CorrelationMatcherOptions fine{0.08, 0.02, 8, 10, true};
+  scan_matching::SearchWindow fine_window{0.24, 0.24, 0.05235987755982988, 0.02,
+                                          0.004363323129985824};  // 24 cm x 24 cm x 3 deg
+  double max_range_m = 30.0;   // scan points farther than this are dropped
+  double min_range_m = 0.1;    // closer returns are the carrier's body
+  double agreement_tolerance_m = 0.3;  // a beam agrees when real and virtual range differ less
+};
+
+// One candidate pose of the body on the plan.
+struct PoseHypothesis {
+  geometry::Pose2 map_from_body;
+  double score = 0.0;         // eq. 2 fraction with the fine threshold, in [0, 1]
+  int hits = 0;               // scan points on the plan
+  double coarse_score = 0.0;  // eq. 2 fraction of the coarse search
+  // Beam agreement with the virtual scan (whole-scan Localise only, else equal to score):
+  // (agreeing beams - beams seeing through a plan wall) / real returns, at most 1.
+  double agreement = 0.0;
+};
+
+// Result of one global localisation; failure is data (empty hypotheses).
+struct GlobalResult {
+  std::vector<PoseHypothesis> hypotheses;  // best first (by agreement, then score)
+  double margin = 0.0;        // best agreement minus the second-best's (1 if only one)
+  long candidates_scored = 0; // branch-and-bound nodes scored, over all tiles
+};
+
+// Global localisation against one plan. Not thread-safe (the matchers cache their max-grids).
+class GlobalLocaliser {
+ public:
+  GlobalLocaliser(std::vector<geometry::Segment2> plan, const GlobalLocaliserOptions& options = {});
+  ~GlobalLocaliser();
+  GlobalLocaliser(GlobalLocaliser&&) noexcept;
+  GlobalLocaliser& operator=(GlobalLocaliser&&) noexcept;
+
+  // Ranked poses of scan points given in the body frame (point score only).
+  GlobalResult Localise(const scan_matching::Points2& scan_body) const;
+  // Ranked poses of a laser scan (laser at the body origin), verified beam by beam.
+  GlobalResult Localise(const sensors::LaserScan& scan) const;
+
+  // The plan's reference points (map frame), spaced sample_spacing_m along each segment.
+  const scan_matching::Points2& reference() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Points every `spacing_m` along each segment (both ends included), map frame.
+scan_matching::Points2 SampleSegments(const std::vector<geometry::Segment2>& segments,
+                                      double spacing_m);
+
+}  // namespace pena::localisation

@@ -1,0 +1,108 @@
+#pragma once
+// Virtual scan matching (paper section 4.2): at every reference-scan change of the laser odometry
+// a virtual scan is ray-cast from the a priori plan at the expected pose and the real scan is
+// matched against it with the correlation matcher. Above the correlation threshold the pose is
+// corrected; below it the entity goes on with its odometry and the window grows for the next
+// round, which lets it leave the plan and come back. The correction is kept as a transform
+// `map_from_odom` on top of the odometry, so the odometry's own reference is never disturbed.
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "pena/geometry/pose2.hpp"
+#include "pena/geometry/segment2.hpp"
+#include "pena/localisation/virtual_scanner.hpp"
+#include "pena/odometry/laser_odometry.hpp"
+#include "pena/scan_matching/correlation_scan_matcher.hpp"
+#include "pena/sensors/laser_scan.hpp"
+
+namespace pena::localisation {
+
+// Options of the map localiser; validated by the constructor (messages name field and unit).
+struct MapLocaliserOptions {
+  // The plan is rough: a wider hit threshold than the odometry's, graded so the nearest wall wins.
+  scan_matching::CorrelationMatcherOptions matcher{0.10, 0.02, 8, 10, true};
+  // Window after a good match (full extents); it grows by window_growth per failed round.
+  scan_matching::SearchWindow window{0.40, 0.40, 0.06981317007977318, 0.04, 0.008726646259971648};
+  scan_matching::SearchWindow max_window{3.2, 3.2, 0.3490658503988659, 0.04,
+                                         0.008726646259971648};  // 3.2 m x 3.2 m x 20 deg
+  double window_growth = 1.4;
+  double min_score = 0.55;          // eq. 2 fraction of scan points on the virtual scan
+  int min_hits = 100;               // the paper's "number of corresponding pairs"
+  double reacquire_min_score = 0.8; // stricter after outside-map rounds (a wide window errs more)
+  int outside_after_failures = 2;   // consecutive failed rounds that mean "outside the map"
+  int oversample = 3;               // virtual beams per real beam (denser reference points)
+  double min_range_m = 0.1;         // closer real returns are the carrier's body
+  double max_range_m = 15.0;        // real and virtual ranges used, metres
+  double degenerate_eigen_ratio = 0.05;  // J^T J translation eigen ratio below it: corridor
+  // Beyond the paper: a round at every scan, not only at reference changes, so a single badly
+  // matched odometry scan (a corridor along which the odometry slid) is corrected as well.
+  bool every_scan = false;
+  VirtualScannerOptions scanner;
+};
+
+// Where the entity is judged to be with respect to the plan.
+enum class MapStatus {
+  kUnknown,     // no match round yet
+  kInMap,       // the last round matched
+  kOutsideMap,  // outside_after_failures rounds in a row failed: on odometry alone
+  kReacquired,  // the first good round after being outside
+};
+
+// One match round against the plan (at a reference change of the odometry).
+struct MapCorrection {
+  double stamp_s = 0.0;
+  bool accepted = false;                    // the pose was corrected
+  MapStatus status = MapStatus::kUnknown;   // status after this round
+  geometry::Pose2 map_from_body_before;     // expected pose the virtual scan was cast from
+  geometry::Pose2 map_from_body_after;      // corrected pose (= before when not accepted)
+  geometry::Pose2 correction;               // body_before_from_body_after
+  double score = 0.0;                       // eq. 2 fraction at the best pose
+  int hits = 0;                             // scan points on the virtual scan
+  int points = 0;                           // real scan points matched
+  int virtual_points = 0;                   // virtual scan returns (the plan seen from there)
+  double constraint_ratio = 0.0;            // min / max translation eigenvalue of J^T J
+  bool degenerate = false;                  // the weak direction was taken from odometry
+  double confidence = 0.0;                  // in [0, 1]: score x hit support x constraint
+  double window_xy_m = 0.0;                 // searched window side
+  double window_theta_rad = 0.0;
+};
+
+// Matches keyframes of one entity's laser odometry against an a priori plan. Not thread-safe.
+class MapLocaliser {
+ public:
+  // `plan`: segments in the map frame, metres; `map_from_odom`: where the odometry's world frame
+  // sits on the plan (from the known start, or a global localisation).
+  MapLocaliser(const MapLocaliserOptions& options, std::vector<geometry::Segment2> plan,
+               const geometry::Pose2& map_from_odom);
+  ~MapLocaliser();
+  MapLocaliser(MapLocaliser&&) noexcept;
+  MapLocaliser& operator=(MapLocaliser&&) noexcept;
+
+  // Feeds one scan with its odometry estimate (odometry world frame). Runs a round when the
+  // reference changed (or `force`, or every_scan), returns it; nullopt when no round ran.
+  std::optional<MapCorrection> Update(const sensors::LaserScan& scan,
+                                      const odometry::OdometryEstimate& estimate,
+                                      bool force = false);
+
+  // The body pose on the plan for an odometry pose: map_from_odom * odom_from_body.
+  geometry::Pose2 MapFromBody(const geometry::Pose2& odom_from_body) const;
+  const geometry::Pose2& map_from_odom() const;
+  // Re-anchors the odometry frame on the plan (after a global localisation); status -> unknown.
+  void Reset(const geometry::Pose2& map_from_odom);
+  MapStatus status() const;
+  // Walked distance in metres since the last accepted correction.
+  double distance_since_correction_m() const;
+  const VirtualScanner& scanner() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// "unknown", "in_map", "outside_map", "reacquired".
+const char* ToString(MapStatus status);
+
+}  // namespace pena::localisation

@@ -1,0 +1,188 @@
+#include "pena/localisation/global_localiser.hpp"
+
+#include "pena/localisation/virtual_scanner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace pena::localisation {
+namespace {
+
+void Require(bool ok, const std::string& field, const std::string& rule, double value) {
+  if (!ok) {
+    throw std::invalid_argument("global_localiser." + field + " must be " + rule + ", got " +
+                                std::to_string(value));
+  }
+}
+
+void Validate(const GlobalLocaliserOptions& o) {
+  Require(o.sample_spacing_m > 0.0, "sample_spacing_m", "> 0 m", o.sample_spacing_m);
+  Require(o.tile_size_m > 0.0, "tile_size_m", "> 0 m", o.tile_size_m);
+  Require(o.margin_m >= 0.0, "margin_m", ">= 0 m", o.margin_m);
+  Require(o.max_hypotheses >= 1, "max_hypotheses", ">= 1", o.max_hypotheses);
+  Require(o.max_range_m > 0.0, "max_range_m", "> 0 m", o.max_range_m);
+  Require(o.coarse_step_theta_rad > 0.0, "coarse_step_theta_rad", "> 0 rad", o.coarse_step_theta_rad);
+  scan_matching::ValidateWindow({o.tile_size_m, o.tile_size_m, 2.0 * std::numbers::pi,
+                                 o.coarse_step_xy_m, o.coarse_step_theta_rad},
+                                o.coarse);
+  scan_matching::ValidateWindow(o.fine_window, o.fine);
+}
+
+// Same place: closer than this in position and heading.
+bool SamePlace(const geometry::Pose2& a, const geometry::Pose2& b) {
+  return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m) < 0.5 &&
+         std::abs(geometry::NormalizeAngle(a.theta_rad - b.theta_rad)) < 0.1745;
+}
+
+// Best first by agreement, duplicates of a better hypothesis dropped, at most `keep`.
+void Rank(int keep, GlobalResult& result) {
+  auto& h = result.hypotheses;
+  std::sort(h.begin(), h.end(), [](const PoseHypothesis& a, const PoseHypothesis& b) {
+    return a.agreement != b.agreement ? a.agreement > b.agreement : a.score > b.score;
+  });
+  std::vector<PoseHypothesis> distinct;
+  for (const PoseHypothesis& candidate : h) {
+    const bool duplicate = std::any_of(distinct.begin(), distinct.end(), [&](const PoseHypothesis& d) {
+      return SamePlace(d.map_from_body, candidate.map_from_body);
+    });
+    if (!duplicate) distinct.push_back(candidate);
+    if (distinct.size() >= static_cast<std::size_t>(keep)) break;
+  }
+  h = std::move(distinct);
+  result.margin = h.size() > 1 ? h[0].agreement - h[1].agreement : 1.0;
+}
+
+}  // namespace
+
+scan_matching::Points2 SampleSegments(const std::vector<geometry::Segment2>& segments,
+                                      double spacing_m) {
+  scan_matching::Points2 points;
+  for (const geometry::Segment2& s : segments) {
+    const double length = geometry::Length(s);
+    const int steps = std::max(1, static_cast<int>(std::ceil(length / spacing_m)));
+    for (int i = 0; i <= steps; ++i) {
+      points.push_back(s.start_m + (s.end_m - s.start_m) * (static_cast<double>(i) / steps));
+    }
+  }
+  return points;
+}
+
+struct GlobalLocaliser::Impl {
+  GlobalLocaliserOptions options;
+  scan_matching::Points2 reference;
+  scan_matching::CorrelationScanMatcher coarse;
+  scan_matching::CorrelationScanMatcher fine;
+  std::vector<geometry::Pose2> tile_centres;
+  VirtualScanner scanner;
+
+  void MakeTiles(const std::vector<geometry::Segment2>& plan) {
+    if (plan.empty()) return;
+    Eigen::Vector2d low = plan.front().start_m, high = low;
+    for (const auto& s : plan) {
+      low = low.cwiseMin(s.start_m).cwiseMin(s.end_m);
+      high = high.cwiseMax(s.start_m).cwiseMax(s.end_m);
+    }
+    low.array() -= options.margin_m;
+    high.array() += options.margin_m;
+    const double t = options.tile_size_m;
+    const int nx = std::max(1, static_cast<int>(std::ceil((high.x() - low.x()) / t)));
+    const int ny = std::max(1, static_cast<int>(std::ceil((high.y() - low.y()) / t)));
+    for (int ix = 0; ix < nx; ++ix) {
+      for (int iy = 0; iy < ny; ++iy) tile_centres.push_back({low.x() + (ix + 0.5) * t, low.y() + (iy + 0.5) * t, 0.0});
+    }
+  }
+
+  // Best coarse pose of every tile: branch and bound over the tile x all headings.
+  std::vector<PoseHypothesis> CoarseCandidates(const scan_matching::Points2& scan, long& scored) const {
+    const scan_matching::SearchWindow window{options.tile_size_m, options.tile_size_m,
+                                             2.0 * std::numbers::pi, options.coarse_step_xy_m,
+                                             options.coarse_step_theta_rad};
+    std::vector<PoseHypothesis> candidates;
+    for (const geometry::Pose2& centre : tile_centres) {
+      const scan_matching::MatchResult match = coarse.MatchBranchAndBound(scan, centre, window);
+      scored += match.candidates_scored;
+      if (!match.converged) continue;
+      candidates.push_back({match.grid_pose, match.score, match.hits, match.score});
+    }
+    return candidates;
+  }
+
+  // Beam-by-beam agreement of the real scan with the virtual scan from `map_from_body`.
+  double Agreement(const sensors::LaserScan& scan, const geometry::Pose2& map_from_body) const {
+    std::vector<float> virtual_m;
+    sensors::LaserGeometry geometry = scan.geometry;
+    geometry.max_range_m = options.max_range_m;
+    scanner.CastScan(map_from_body, geometry, scan.ranges_m.size(), virtual_m);
+    long agree = 0, through = 0, returns = 0;
+    for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+      const double real = scan.ranges_m[i];
+      if (!scan.IsReturn(i) || real < options.min_range_m || real > options.max_range_m) continue;
+      ++returns;
+      const double expected = virtual_m[i];  // +inf when the plan has nothing there
+      if (std::abs(real - expected) <= options.agreement_tolerance_m) ++agree;
+      else if (real > expected) ++through;  // the beam passed where the plan has a wall
+    }
+    return returns == 0 ? 0.0 : static_cast<double>(agree - through) / static_cast<double>(returns);
+  }
+
+  // Fine match around a coarse pose; the score is eq. 2 with the fine threshold.
+  PoseHypothesis Refine(const scan_matching::Points2& scan, const PoseHypothesis& coarse_pose) const {
+    const scan_matching::MatchResult match =
+        fine.MatchExhaustive(scan, coarse_pose.map_from_body, options.fine_window);
+    PoseHypothesis refined = coarse_pose;
+    refined.map_from_body = match.reference_from_scan;
+    refined.score = fine.Score(scan, match.reference_from_scan);
+    refined.hits = static_cast<int>(std::lround(refined.score * static_cast<double>(scan.size())));
+    return refined;
+  }
+};
+
+GlobalLocaliser::GlobalLocaliser(std::vector<geometry::Segment2> plan,
+                                 const GlobalLocaliserOptions& options) {
+  Validate(options);
+  scan_matching::Points2 reference = SampleSegments(plan, options.sample_spacing_m);
+  impl_ = std::make_unique<Impl>(Impl{options, reference,
+                                      scan_matching::CorrelationScanMatcher(options.coarse, reference),
+                                      scan_matching::CorrelationScanMatcher(options.fine, reference),
+                                      {}, VirtualScanner(plan)});
+  impl_->MakeTiles(plan);
+}
+
+GlobalLocaliser::~GlobalLocaliser() = default;
+GlobalLocaliser::GlobalLocaliser(GlobalLocaliser&&) noexcept = default;
+GlobalLocaliser& GlobalLocaliser::operator=(GlobalLocaliser&&) noexcept = default;
+
+GlobalResult GlobalLocaliser::Localise(const scan_matching::Points2& scan_body) const {
+  GlobalResult result;
+  scan_matching::Points2 scan = scan_body;
+  std::erase_if(scan, [&](const Eigen::Vector2d& p) { return p.norm() > impl_->options.max_range_m; });
+  if (scan.empty() || impl_->reference.empty()) return result;
+  for (const PoseHypothesis& candidate : impl_->CoarseCandidates(scan, result.candidates_scored)) {
+    PoseHypothesis refined = impl_->Refine(scan, candidate);
+    refined.agreement = refined.score;
+    result.hypotheses.push_back(refined);
+  }
+  Rank(impl_->options.max_hypotheses, result);
+  return result;
+}
+
+GlobalResult GlobalLocaliser::Localise(const sensors::LaserScan& scan) const {
+  scan_matching::Points2 points = scan_matching::ScanToPoints(scan, impl_->options.min_range_m);
+  std::erase_if(points, [&](const Eigen::Vector2d& p) { return p.norm() > impl_->options.max_range_m; });
+  GlobalResult result;
+  if (points.empty() || impl_->reference.empty()) return result;
+  for (const PoseHypothesis& candidate : impl_->CoarseCandidates(points, result.candidates_scored)) {
+    PoseHypothesis refined = impl_->Refine(points, candidate);
+    refined.agreement = impl_->Agreement(scan, refined.map_from_body);
+    result.hypotheses.push_back(refined);
+  }
+  Rank(impl_->options.max_hypotheses, result);
+  return result;
+}
+
+const scan_matching::Points2& GlobalLocaliser::reference() const { return impl_->reference; }
+
+}  // namespace pena::localisation

@@ -1,0 +1,210 @@
+#include "pena/localisation/map_localiser.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "pena/scan_matching/point_set.hpp"
+
+namespace pena::localisation {
+namespace {
+
+void Require(bool ok, const std::string& field, const std::string& rule, double value) {
+  if (!ok) {
+    throw std::invalid_argument("map_localiser." + field + " must be " + rule + ", got " +
+                                std::to_string(value));
+  }
+}
+
+void Validate(const MapLocaliserOptions& o) {
+  scan_matching::ValidateWindow(o.window, o.matcher);
+  scan_matching::ValidateWindow(o.max_window, o.matcher);
+  Require(o.window_growth >= 1.0, "window_growth", ">= 1", o.window_growth);
+  Require(o.min_score > 0.0 && o.min_score <= 1.0, "min_score", "in (0, 1]", o.min_score);
+  Require(o.reacquire_min_score > 0.0 && o.reacquire_min_score <= 1.0, "reacquire_min_score",
+          "in (0, 1]", o.reacquire_min_score);
+  Require(o.min_hits >= 1, "min_hits", ">= 1", o.min_hits);
+  Require(o.outside_after_failures >= 1, "outside_after_failures", ">= 1",
+          o.outside_after_failures);
+  Require(o.oversample >= 1, "oversample", ">= 1", o.oversample);
+  Require(o.min_range_m >= 0.0, "min_range_m", ">= 0 m", o.min_range_m);
+  Require(o.max_range_m > o.min_range_m, "max_range_m", "> min_range_m (m)", o.max_range_m);
+}
+
+// The window grown by `factor`, capped at `max` per extent.
+scan_matching::SearchWindow Grown(const scan_matching::SearchWindow& w,
+                                  const scan_matching::SearchWindow& max, double factor) {
+  scan_matching::SearchWindow out = w;
+  out.size_x_m = std::min(max.size_x_m, w.size_x_m * factor);
+  out.size_y_m = std::min(max.size_y_m, w.size_y_m * factor);
+  out.size_theta_rad = std::min(max.size_theta_rad, w.size_theta_rad * factor);
+  return out;
+}
+
+long Candidates(const scan_matching::SearchWindow& w) {
+  const auto side = [](double size, double step) { return 2L * std::lround(0.5 * size / step) + 1; };
+  return side(w.size_x_m, w.step_xy_m) * side(w.size_y_m, w.step_xy_m) *
+         side(w.size_theta_rad, w.step_theta_rad);
+}
+
+}  // namespace
+
+struct MapLocaliser::Impl {
+  MapLocaliserOptions options;
+  VirtualScanner scanner;
+  geometry::Pose2 map_from_odom;
+  MapStatus status = MapStatus::kUnknown;
+  scan_matching::SearchWindow window;
+  int failures = 0;
+  double distance_m = 0.0;
+  std::optional<geometry::Pose2> last_odom;
+
+  // Real returns in the body (laser) frame within the usable range band.
+  scan_matching::Points2 RealPoints(const sensors::LaserScan& scan) const {
+    scan_matching::Points2 points = scan_matching::ScanToPoints(scan, options.min_range_m);
+    std::erase_if(points, [&](const Eigen::Vector2d& p) { return p.norm() > options.max_range_m; });
+    return points;
+  }
+
+  // The plan seen from `map_from_body` by the same laser, oversampled, in the body frame.
+  scan_matching::Points2 VirtualPoints(const sensors::LaserScan& scan,
+                                       const geometry::Pose2& map_from_body) const {
+    if (scan.ranges_m.empty()) return {};
+    sensors::LaserGeometry geometry = scan.geometry;
+    geometry.angle_increment_rad /= options.oversample;
+    geometry.max_range_m = std::min(options.max_range_m, scan.geometry.max_range_m > 0.0
+                                                             ? scan.geometry.max_range_m
+                                                             : options.max_range_m);
+    const std::size_t beams = (scan.ranges_m.size() - 1) * static_cast<std::size_t>(options.oversample) + 1;
+    return scan_matching::ScanToPoints(scanner.Scan(map_from_body, geometry, beams), 0.0);
+  }
+
+  void Accumulate(const geometry::Pose2& odom_from_body) {
+    if (last_odom) {
+      distance_m += std::hypot(odom_from_body.x_m - last_odom->x_m, odom_from_body.y_m - last_odom->y_m);
+    }
+    last_odom = odom_from_body;
+  }
+
+  MapCorrection Round(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body);
+  void Judge(const scan_matching::MatchResult& match, MapCorrection& round) const;
+  void Conclude(const geometry::Pose2& odom_from_body, MapCorrection& round);
+};
+
+// Accepts or rejects a round on the paper's correlation threshold, and keeps the least-squares
+// refinement only along directions the scan constrains.
+void MapLocaliser::Impl::Judge(const scan_matching::MatchResult& match, MapCorrection& round) const {
+  round.score = match.score;
+  round.hits = match.hits;
+  geometry::Pose2 correction = match.reference_from_scan;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(match.information.topLeftCorner<2, 2>());
+  const Eigen::Vector2d values = solver.eigenvalues();  // ascending
+  round.constraint_ratio = values(1) > 0.0 ? std::max(0.0, values(0)) / values(1) : 0.0;
+  if (round.constraint_ratio < options.degenerate_eigen_ratio) {
+    // Along a corridor neither least squares nor the correlation peak is trustworthy (a plan
+    // wall drawn across an opening pulls it): the odometry is kept in the weak direction.
+    const Eigen::Vector2d strong = solver.eigenvectors().col(1);
+    const Eigen::Vector2d kept = strong * strong.dot(Eigen::Vector2d(correction.x_m, correction.y_m));
+    correction.x_m = kept.x();
+    correction.y_m = kept.y();
+    round.degenerate = true;
+  }
+  const double min_score =
+      status == MapStatus::kOutsideMap ? options.reacquire_min_score : options.min_score;
+  round.accepted = match.converged && match.hits >= options.min_hits && match.score >= min_score;
+  round.confidence = match.score * std::min(1.0, match.hits / (2.0 * options.min_hits));
+  if (round.accepted) round.correction = correction;
+}
+
+void MapLocaliser::Impl::Conclude(const geometry::Pose2& odom_from_body, MapCorrection& round) {
+  round.map_from_body_after = geometry::Compose(round.map_from_body_before, round.correction);
+  if (round.accepted) {
+    map_from_odom = geometry::Compose(round.map_from_body_after, geometry::Inverse(odom_from_body));
+    status = status == MapStatus::kOutsideMap ? MapStatus::kReacquired : MapStatus::kInMap;
+    failures = 0;
+    distance_m = 0.0;
+    window = options.window;
+  } else {
+    ++failures;
+    if (failures >= options.outside_after_failures) status = MapStatus::kOutsideMap;
+    window = Grown(window, options.max_window, options.window_growth);
+  }
+  round.status = status;
+}
+
+MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
+                                        const geometry::Pose2& odom_from_body) {
+  MapCorrection round;
+  round.stamp_s = scan.stamp_s;
+  round.map_from_body_before = geometry::Compose(map_from_odom, odom_from_body);
+  round.window_xy_m = std::max(window.size_x_m, window.size_y_m);
+  round.window_theta_rad = window.size_theta_rad;
+  const scan_matching::Points2 real = RealPoints(scan);
+  const scan_matching::Points2 virtual_points = VirtualPoints(scan, round.map_from_body_before);
+  round.points = static_cast<int>(real.size());
+  round.virtual_points = static_cast<int>(virtual_points.size());
+  if (real.empty() || virtual_points.size() < static_cast<std::size_t>(options.min_hits)) {
+    Conclude(odom_from_body, round);  // the plan is not in sight: a failed round
+    return round;
+  }
+  const scan_matching::CorrelationScanMatcher matcher(options.matcher, virtual_points);
+  // Exhaustive search is cheaper for the paper's small window (no max-grids to build).
+  const scan_matching::MatchResult match =
+      Candidates(window) > 20000 ? matcher.MatchBranchAndBound(real, {}, window)
+                                 : matcher.MatchExhaustive(real, {}, window);
+  Judge(match, round);
+  Conclude(odom_from_body, round);
+  return round;
+}
+
+MapLocaliser::MapLocaliser(const MapLocaliserOptions& options, std::vector<geometry::Segment2> plan,
+                           const geometry::Pose2& map_from_odom) {
+  Validate(options);
+  impl_ = std::make_unique<Impl>(Impl{options, VirtualScanner(std::move(plan), options.scanner),
+                                      map_from_odom, MapStatus::kUnknown, options.window, 0, 0.0,
+                                      std::nullopt});
+}
+
+MapLocaliser::~MapLocaliser() = default;
+MapLocaliser::MapLocaliser(MapLocaliser&&) noexcept = default;
+MapLocaliser& MapLocaliser::operator=(MapLocaliser&&) noexcept = default;
+
+std::optional<MapCorrection> MapLocaliser::Update(const sensors::LaserScan& scan,
+                                                  const odometry::OdometryEstimate& estimate,
+                                                  bool force) {
+  impl_->Accumulate(estimate.world_from_body);
+  if (!estimate.reference_changed && !force && !impl_->options.every_scan) return std::nullopt;
+  return impl_->Round(scan, estimate.world_from_body);
+}
+
+geometry::Pose2 MapLocaliser::MapFromBody(const geometry::Pose2& odom_from_body) const {
+  return geometry::Compose(impl_->map_from_odom, odom_from_body);
+}
+
+const geometry::Pose2& MapLocaliser::map_from_odom() const { return impl_->map_from_odom; }
+
+void MapLocaliser::Reset(const geometry::Pose2& map_from_odom) {
+  impl_->map_from_odom = map_from_odom;
+  impl_->status = MapStatus::kUnknown;
+  impl_->failures = 0;
+  impl_->distance_m = 0.0;
+  impl_->window = impl_->options.window;
+}
+
+MapStatus MapLocaliser::status() const { return impl_->status; }
+double MapLocaliser::distance_since_correction_m() const { return impl_->distance_m; }
+const VirtualScanner& MapLocaliser::scanner() const { return impl_->scanner; }
+
+const char* ToString(MapStatus status) {
+  switch (status) {
+    case MapStatus::kUnknown: return "unknown";
+    case MapStatus::kInMap: return "in_map";
+    case MapStatus::kOutsideMap: return "outside_map";
+    case MapStatus::kReacquired: return "reacquired";
+  }
+  return "unknown";
+}
+
+}  // namespace pena::localisation

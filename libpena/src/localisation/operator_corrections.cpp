@@ -1,0 +1,80 @@
+#include "pena/localisation/operator_corrections.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace pena::localisation {
+namespace {
+
+// Section 4.1's three points: the angle between origin -> wrong and origin -> correct, about the
+// origin: p' = origin + R (p - origin), i.e. the transform (origin - R origin, angle).
+geometry::Pose2 RotationTransform(const RotationCorrection& r) {
+  const Eigen::Vector2d wrong = r.wrong_m - r.origin_m;
+  const Eigen::Vector2d correct = r.correct_m - r.origin_m;
+  if (wrong.norm() < 1e-9 || correct.norm() < 1e-9) {
+    throw std::invalid_argument(
+        "operator rotation: the wrong and correct direction points must differ from the origin");
+  }
+  const double angle = std::atan2(correct.y(), correct.x()) - std::atan2(wrong.y(), wrong.x());
+  const double c = std::cos(angle), s = std::sin(angle);
+  const Eigen::Vector2d rotated_origin(c * r.origin_m.x() - s * r.origin_m.y(),
+                                      s * r.origin_m.x() + c * r.origin_m.y());
+  const Eigen::Vector2d shift = r.origin_m - rotated_origin;
+  return {shift.x(), shift.y(), geometry::NormalizeAngle(angle)};
+}
+
+}  // namespace
+
+geometry::Pose2 CorrectionTransform(const OperatorCorrection& correction) {
+  if (const auto* rotation = std::get_if<RotationCorrection>(&correction)) {
+    return RotationTransform(*rotation);
+  }
+  const auto& translation = std::get<TranslationCorrection>(correction);
+  const Eigen::Vector2d shift = translation.correct_m - translation.point_m;
+  return {shift.x(), shift.y(), 0.0};
+}
+
+double FromStamp(const OperatorCorrection& correction) {
+  return std::visit([](const auto& c) { return c.from_stamp_s; }, correction);
+}
+
+geometry::Trajectory ApplyCorrection(const geometry::Trajectory& trajectory,
+                                     const OperatorCorrection& correction) {
+  const geometry::Pose2 corrected_from_wrong = CorrectionTransform(correction);
+  const double from_s = FromStamp(correction);
+  geometry::Trajectory out = trajectory;
+  for (geometry::StampedPose2& pose : out) {
+    if (pose.stamp_s >= from_s) pose.pose = geometry::Compose(corrected_from_wrong, pose.pose);
+  }
+  return out;
+}
+
+void OperatorCorrections::Add(const OperatorCorrection& correction) {
+  CorrectionTransform(correction);  // throws for a degenerate rotation before it is stored
+  corrections_.push_back(correction);
+}
+
+bool OperatorCorrections::Undo() {
+  if (corrections_.empty()) return false;
+  corrections_.pop_back();
+  return true;
+}
+
+geometry::Trajectory OperatorCorrections::Apply(const geometry::Trajectory& raw) const {
+  geometry::Trajectory out = raw;
+  for (const OperatorCorrection& correction : corrections_) out = ApplyCorrection(out, correction);
+  return out;
+}
+
+geometry::Pose2 OperatorCorrections::CorrectedFromRaw(double stamp_s) const {
+  // Later corrections act on the output of earlier ones: T = T_n * ... * T_1 (those in force).
+  geometry::Pose2 corrected_from_raw;
+  for (const OperatorCorrection& correction : corrections_) {
+    if (stamp_s >= FromStamp(correction)) {
+      corrected_from_raw = geometry::Compose(CorrectionTransform(correction), corrected_from_raw);
+    }
+  }
+  return corrected_from_raw;
+}
+
+}  // namespace pena::localisation
