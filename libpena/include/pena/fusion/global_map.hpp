@@ -1,0 +1,70 @@
+#pragma once
+// The merged global line map of the fusion service (issue 6): every source (the a priori plan and
+// each placed entity's local map, already in the map frame) is merged into one line map with
+// line_map::LineMap's same-wall rule; global ids stay stable across rebuilds because each global
+// segment is matched to its predecessor by the local segments that support it (provenance).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pena/line_map/line_map.hpp"
+#include "pena/line_map/line_segment.hpp"
+#include "pena/line_map/map_delta.hpp"
+
+namespace pena::fusion {
+
+// One input of the merge: its name ("plan", an entity id) and its segments in the map frame.
+struct MergeSource {
+  std::string name;
+  std::vector<line_map::LineSegment> segments;  // ids are the source's own segment ids
+  bool plan = false;  // the a priori plan: laid under the observations, not merged with them
+};
+
+// Options of the global map; validated by GlobalMap's constructor.
+struct GlobalMapOptions {
+  line_map::LineMapOptions merge;  // when walls of different sources are one wall
+  // A wall only one entity saw (no other entity, no plan) is published only if it has at least
+  // this many occupied grid cells per metre behind it: dotted floor reflections seen through a
+  // door by one person (~5 cells/m) stay out until someone corroborates them; a solid wall on a
+  // 5 cm grid has 14-20 cells/m per extraction. Cells per metre, >= 0 (0 = publish everything).
+  double min_lone_support_per_m = 10.0;
+  // An observed wall parallel to a plan wall and at most this far from it replaces the plan
+  // there (the plan is partly wrong: shifted walls). Metres, >= 0.
+  double plan_shadow_m = 0.6;
+  // Uncovered plan pieces shorter than this are dropped. Metres, >= 0.
+  double min_plan_piece_m = 0.3;
+};
+
+// Provenance key of a source segment: "<source>:<segment id>" (e.g. "ff1:12", "plan:3").
+std::string ProvenanceKey(const std::string& source, std::int64_t segment_id);
+
+// The published global map: versioned, with stable ids; every change is a MapDelta.
+class GlobalMap {
+ public:
+  // Throws std::invalid_argument naming the field for bad options.
+  explicit GlobalMap(GlobalMapOptions options = {});
+  // Resumes from a published snapshot (ids, version and next id kept); throws like
+  // line_map::LineMap::FromSnapshot.
+  static GlobalMap FromSnapshot(const line_map::MapSnapshot& snapshot,
+                                GlobalMapOptions options = {});
+
+  // Merges `sources` (in the given order) from scratch and returns the change against the
+  // current map (empty if nothing changed; then the version stays). Each segment's provenance is
+  // the sorted list of the keys of the source segments merged into it. Lone weak walls (see
+  // GlobalMapOptions) are left out.
+  line_map::MapDelta Rebuild(const std::vector<MergeSource>& sources);
+
+  // The published map (segments sorted by id).
+  line_map::MapSnapshot Snapshot() const;
+  std::uint64_t version() const { return published_.version(); }
+  std::size_t size() const { return published_.size(); }
+  const GlobalMapOptions& options() const { return options_; }
+
+ private:
+  GlobalMapOptions options_;
+  line_map::LineMap published_;  // receives its own deltas: what a late joiner rebuilds
+  std::int64_t next_id_ = 1;
+};
+
+}  // namespace pena::fusion

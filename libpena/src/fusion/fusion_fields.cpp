@@ -1,0 +1,128 @@
+#include "fusion_fields.hpp"
+
+// Field layouts of the fusion codec (docs/fusion.md): fixed-width little-endian numbers, doubles
+// by their bits, lists as a u64 count and items.
+
+namespace pena::fusion::detail {
+namespace {
+
+constexpr std::size_t kMinSegmentBytes = 8 + 7 * 8 + 8;
+
+}  // namespace
+
+void Put(ByteWriter& w, const geometry::Pose2& pose) {
+  w.F64(pose.x_m);
+  w.F64(pose.y_m);
+  w.F64(pose.theta_rad);
+}
+geometry::Pose2 GetPose(ByteReader& r) {
+  geometry::Pose2 pose;
+  pose.x_m = r.F64();
+  pose.y_m = r.F64();
+  pose.theta_rad = r.F64();
+  return pose;
+}
+void Put(ByteWriter& w, const std::optional<geometry::Pose2>& pose) {
+  w.U8(pose ? 1 : 0);
+  if (pose) Put(w, *pose);
+}
+std::optional<geometry::Pose2> GetOptionalPose(ByteReader& r) {
+  const std::uint8_t flag = r.U8();
+  if (flag > 1) r.Fail("optional flag " + std::to_string(flag));
+  if (flag == 0) return std::nullopt;
+  return GetPose(r);
+}
+
+void Put(ByteWriter& w, const line_map::LineSegment& s) {
+  w.I64(s.id);
+  for (const double v : {s.segment.start_m.x(), s.segment.start_m.y(), s.segment.end_m.x(),
+                         s.segment.end_m.y(), s.support_cells, s.observations, s.rms_error_m}) {
+    w.F64(v);
+  }
+  w.U64(s.provenance.size());
+  for (const std::string& entry : s.provenance) w.Text(entry);
+}
+line_map::LineSegment GetSegment(ByteReader& r) {
+  line_map::LineSegment s;
+  s.id = r.I64();
+  s.segment.start_m.x() = r.F64();
+  s.segment.start_m.y() = r.F64();
+  s.segment.end_m.x() = r.F64();
+  s.segment.end_m.y() = r.F64();
+  s.support_cells = r.F64();
+  s.observations = r.F64();
+  s.rms_error_m = r.F64();
+  s.provenance.resize(r.Count(8));
+  for (std::string& entry : s.provenance) entry = r.Text();
+  return s;
+}
+void Put(ByteWriter& w, const std::vector<line_map::LineSegment>& list) {
+  w.U64(list.size());
+  for (const line_map::LineSegment& s : list) Put(w, s);
+}
+std::vector<line_map::LineSegment> GetSegments(ByteReader& r) {
+  std::vector<line_map::LineSegment> list(r.Count(kMinSegmentBytes));
+  for (line_map::LineSegment& s : list) s = GetSegment(r);
+  return list;
+}
+
+void Put(ByteWriter& w, const line_map::MapDelta& d) {
+  w.U64(d.from_version);
+  w.U64(d.to_version);
+  Put(w, d.added);
+  Put(w, d.changed);
+  w.U64(d.removed.size());
+  for (const std::int64_t id : d.removed) w.I64(id);
+}
+line_map::MapDelta GetDelta(ByteReader& r) {
+  line_map::MapDelta d;
+  d.from_version = r.U64();
+  d.to_version = r.U64();
+  d.added = GetSegments(r);
+  d.changed = GetSegments(r);
+  d.removed.resize(r.Count(8));
+  for (std::int64_t& id : d.removed) id = r.I64();
+  return d;
+}
+
+void Put(ByteWriter& w, const line_map::MapSnapshot& s) {
+  w.U64(s.version);
+  w.I64(s.next_id);
+  Put(w, s.segments);
+}
+line_map::MapSnapshot GetSnapshot(ByteReader& r) {
+  line_map::MapSnapshot s;
+  s.version = r.U64();
+  s.next_id = r.I64();
+  s.segments = GetSegments(r);
+  return s;
+}
+
+void Put(ByteWriter& w, const Annotation& a) {
+  w.I64(a.id);
+  w.U8(static_cast<std::uint8_t>(a.kind));
+  w.F64(a.position_m.x());
+  w.F64(a.position_m.y());
+  w.F64(a.radius_m);
+  w.Text(a.text);
+  w.Text(a.author);
+  w.F64(a.stamp_s);
+}
+Annotation GetAnnotation(ByteReader& r) {
+  Annotation a;
+  a.id = r.I64();
+  const std::uint8_t kind = r.U8();
+  if (kind > static_cast<std::uint8_t>(AnnotationKind::kNote)) {
+    r.Fail("unknown annotation kind " + std::to_string(kind));
+  }
+  a.kind = static_cast<AnnotationKind>(kind);
+  a.position_m.x() = r.F64();
+  a.position_m.y() = r.F64();
+  a.radius_m = r.F64();
+  a.text = r.Text();
+  a.author = r.Text();
+  a.stamp_s = r.F64();
+  return a;
+}
+
+}  // namespace pena::fusion::detail
