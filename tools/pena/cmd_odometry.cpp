@@ -170,15 +170,15 @@ RunResult RunChain(io::LogSource& source, const OdometryArgs& args,
 void WriteCsv(const std::filesystem::path& path, const RunResult& run) {
   std::ofstream out(path);
   out << "stamp,x,y,theta,status,score,points,reference_changed,wide_search,prior_x,prior_y,"
-         "prior_theta\n";
+         "prior_theta,gated\n";
   char line[320];
   for (const odometry::OdometryEstimate& e : run.estimates) {
     const geometry::Pose2& p = e.world_from_body;
     const geometry::Pose2& q = e.world_from_prior;
-    std::snprintf(line, sizeof(line), "%.6f,%.6f,%.6f,%.6f,%s,%.4f,%d,%d,%d,%.6f,%.6f,%.6f\n",
+    std::snprintf(line, sizeof(line), "%.6f,%.6f,%.6f,%.6f,%s,%.4f,%d,%d,%d,%.6f,%.6f,%.6f,%d\n",
                   e.stamp_s, p.x_m, p.y_m, p.theta_rad, odometry::ToString(e.status), e.score,
                   e.points, e.reference_changed ? 1 : 0, e.wide_search ? 1 : 0, q.x_m, q.y_m,
-                  q.theta_rad);
+                  q.theta_rad, e.gated ? 1 : 0);
     out << line;
   }
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
@@ -200,6 +200,7 @@ void WriteSummaryJson(const std::filesystem::path& path, const OdometryArgs& arg
       << ", \"records\": " << run.records << ", \"skipped_lines\": " << source.skipped()
       << ", \"scans\": " << c.scans << ", \"matched\": " << c.matched
       << ", \"degenerate\": " << c.degenerate << ", \"failed\": " << c.failed
+      << ", \"gated\": " << c.gated
       << ", \"no_points\": " << c.no_points << ", \"prior_only\": " << run.prior_only
       << ", \"keyframes\": " << c.keyframes << ", \"wide_searches\": " << c.wide_searches
       << ", \"records_ignored\": " << c.records_ignored

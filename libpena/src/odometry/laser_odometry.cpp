@@ -9,6 +9,7 @@
 #include "local_map.hpp"
 #include "motion_tracker.hpp"
 #include "options_check.hpp"
+#include "reference_fill.hpp"
 #include "search_window.hpp"
 
 namespace pena::odometry {
@@ -20,6 +21,7 @@ struct LaserOdometry::Impl {
         motion(mode, checked.dead_reckoning, world_from_start, start_stamp_s),
         local_map(checked.local_map_keyframes, 2.0 * checked.matcher.threshold_m, confirm),
         window(checked),
+        fill_spacing_m(confirm ? 0.0 : checked.reference_fill_spacing_m),
         estimate(world_from_start),
         previous_estimate(world_from_start) {}
 
@@ -28,12 +30,19 @@ struct LaserOdometry::Impl {
   internal::LocalMap local_map;
   std::optional<scan_matching::CorrelationScanMatcher> matcher;  // built from local_map
   internal::WindowScale window;
+  // Keyframes are densified only without reference confirmation: with a tilting body-worn laser
+  // the filled floor-hit streaks confirm each other (measured in docs/odometry.md).
+  double fill_spacing_m;
   geometry::Pose2 estimate;
   // The motion sensor's pose at the latest keyframe: priors are anchored there (see Predict).
   std::optional<geometry::Pose2> keyframe_motion_pose;
   geometry::Pose2 previous_estimate;  // at the previous scan
   geometry::Pose2 velocity;           // estimated motion over the previous scan interval
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  // The motion sensor's motion since the latest keyframe (nullopt without a sensor pose): the
+  // prior-consistency gate's allowance grows with it.
+  std::optional<geometry::Pose2> motion_since_keyframe;
+  int consecutive_gated = 0;
   std::optional<double> last_scan_stamp_s;
   OdometryCounts counts;
 
@@ -43,6 +52,7 @@ struct LaserOdometry::Impl {
   scan_matching::MatchResult Search(const scan_matching::Points2& points,
                                     const geometry::Pose2& prior, OdometryEstimate& out);
   void TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out);
+  bool OutsidePriorGate(const OdometryEstimate& out);
 };
 
 namespace {
@@ -124,7 +134,7 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
     if (points.size() >= 10) TakeKeyframe(points, out);
   } else if (!options.match_scans) {
     out.status = MatchStatus::kPriorOnly;
-  } else if (points.size() < 10) {
+  } else if (static_cast<int>(points.size()) < options.min_match_points) {
     out.status = MatchStatus::kNoPoints;  // dead reckoning carries on
     ++counts.no_points;
   } else {
@@ -140,9 +150,11 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
 geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
   const geometry::Pose2 increment = motion.TakeIncrement(scan);
   const auto& motion_pose = motion.last_pose();
+  motion_since_keyframe.reset();
   if (!motion_pose || !keyframe_motion_pose || local_map.empty()) {
     return geometry::Compose(estimate, increment);
   }
+  motion_since_keyframe = geometry::Between(*keyframe_motion_pose, *motion_pose);
   // Anchored at the keyframe, not chained scan to scan: logged odometry often repeats a pose for
   // several scans and then jumps (mit-csail: 85 deg in one step after 1 s of zeros); chaining
   // would add that catch-up on top of the motion the matcher already found.
@@ -197,6 +209,11 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
       KeepPriorAlongWeakDirection(result.information, options.degenerate_eigen_ratio, prior, estimate);
   out.status = degenerate ? MatchStatus::kDegenerate : MatchStatus::kMatched;
   ++(degenerate ? counts.degenerate : counts.matched);
+  if (OutsidePriorGate(out)) {
+    out.gated = true;  // the pose is the match's, but it anchors nothing
+    ++counts.gated;
+    return;
+  }
   window.Shrink();
   const geometry::Pose2 moved = geometry::Between(local_map.latest().world_from_body, estimate);
   if (std::hypot(moved.x_m, moved.y_m) > options.keyframe_distance_m ||
@@ -206,8 +223,33 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
   }
 }
 
+// A match far from the motion prior is either an aliased optimum found by a grown window or a
+// scan that does not belong to its stamp (intel: scans from a second earlier re-delivered during
+// a turn on the spot). Either way it must not become a keyframe: the next priors are anchored
+// there. Trusted after prior_gate_confirm in a row: then the motion sensor is what is wrong.
+bool LaserOdometry::Impl::OutsidePriorGate(const OdometryEstimate& out) {
+  if (options.prior_gate_rad <= 0.0 || !motion_since_keyframe) return false;
+  const geometry::Pose2 deviation = geometry::Between(out.world_from_prior, estimate);
+  const double moved_m = std::hypot(motion_since_keyframe->x_m, motion_since_keyframe->y_m);
+  const double turned_rad = std::abs(geometry::NormalizeAngle(motion_since_keyframe->theta_rad));
+  const double fraction_rad = motion.mode() == MotionPrior::kDeadReckoning
+                                  ? options.prior_gate_fraction_gyro
+                                  : options.prior_gate_fraction;
+  const double allowed_rad = options.prior_gate_rad + fraction_rad * turned_rad;
+  const double allowed_m = options.prior_gate_m + options.prior_gate_fraction * moved_m;
+  const bool outside = std::abs(deviation.theta_rad) > allowed_rad ||
+                       std::hypot(deviation.x_m, deviation.y_m) > allowed_m;
+  if (!outside || ++consecutive_gated >= options.prior_gate_confirm) {
+    consecutive_gated = 0;
+    return false;
+  }
+  return true;
+}
+
 void LaserOdometry::Impl::TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out) {
-  local_map.Add({estimate, scan_matching::TransformPoints(estimate, points)});
+  local_map.Add({estimate, internal::FillReference(scan_matching::TransformPoints(estimate, points), estimate,
+                                         fill_spacing_m,
+                                         options.reference_fill_max_gap_m)});
   keyframe_motion_pose = motion.last_pose();
   matcher.emplace(options.matcher, local_map.Reference());
   out.reference_changed = true;

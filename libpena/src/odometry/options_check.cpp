@@ -20,6 +20,7 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
   Require(o.min_score > 0.0 && o.min_score < 1.0, "min_score", "in (0, 1)", o.min_score);
   Require(o.min_range_m >= 0.0, "min_range_m", ">= 0 m", o.min_range_m);
   Require(o.max_range_m > o.min_range_m, "max_range_m", "> min_range_m (m)", o.max_range_m);
+  Require(o.min_match_points >= 3, "min_match_points", ">= 3 points", o.min_match_points);
   Require(o.local_map_keyframes >= 1, "local_map_keyframes", ">= 1", o.local_map_keyframes);
   Require(o.keyframe_distance_m > 0.0, "keyframe_distance_m", "> 0 m", o.keyframe_distance_m);
   Require(o.keyframe_angle_rad > 0.0, "keyframe_angle_rad", "> 0 rad", o.keyframe_angle_rad);
@@ -27,6 +28,16 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           "in [0, 1]", o.keyframe_min_score);
   Require(o.degenerate_eigen_ratio >= 0.0 && o.degenerate_eigen_ratio < 1.0,
           "degenerate_eigen_ratio", "in [0, 1)", o.degenerate_eigen_ratio);
+  Require(o.reference_fill_spacing_m >= 0.0, "reference_fill_spacing_m", ">= 0 m (0: no fill)",
+          o.reference_fill_spacing_m);
+  Require(o.reference_fill_max_gap_m > 0.0, "reference_fill_max_gap_m", "> 0 m",
+          o.reference_fill_max_gap_m);
+  Require(o.prior_gate_rad >= 0.0, "prior_gate_rad", ">= 0 rad (0: no gate)", o.prior_gate_rad);
+  Require(o.prior_gate_fraction >= 0.0, "prior_gate_fraction", ">= 0", o.prior_gate_fraction);
+  Require(o.prior_gate_fraction_gyro >= 0.0, "prior_gate_fraction_gyro", ">= 0",
+          o.prior_gate_fraction_gyro);
+  Require(o.prior_gate_m > 0.0, "prior_gate_m", "> 0 m", o.prior_gate_m);
+  Require(o.prior_gate_confirm >= 1, "prior_gate_confirm", ">= 1 scans", o.prior_gate_confirm);
   scan_matching::ValidateWindow(o.window, o.matcher);
   scan_matching::ValidateWindow(o.wide_window, o.matcher);
   return o;
