@@ -12,5 +12,6 @@ void AddSimulateCommand(CLI::App& app);  // pena simulate --scenario NAME|FILE -
 void AddOdometryCommand(CLI::App& app);  // pena odometry --log LOG --out DIR
 void AddMapCommand(CLI::App& app);       // pena map --log LOG [--trajectory T] --out DIR
 void AddLocaliseCommand(CLI::App& app);  // pena localise --log LOG --map PLAN --out DIR
+void AddReportCommand(CLI::App& app);    // pena report --mission M --run R [--out DIR]
 
 }  // namespace pena::cli

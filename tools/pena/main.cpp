@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   pena::cli::AddOdometryCommand(app);
   pena::cli::AddMapCommand(app);
   pena::cli::AddLocaliseCommand(app);
+  pena::cli::AddReportCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

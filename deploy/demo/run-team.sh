@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# The PeNa team demo (docs/demo.md): the built-in `team` mission (three firefighters, one robot,
+# a partial a priori plan) with one pena-entity per member and one pena-fusion, on loopback DDS,
+# time running PENA_DEMO_RATE (default 5) times faster than real time; then `pena report`.
+#
+#   deploy/demo/run-team.sh OUT_DIR
+#
+# Environment: PENA_BUILD (build tree, default <repo>/build), PENA_DEMO_RATE (5), PENA_DEMO_SEED
+# (1), PENA_DEMO_MISSION (reuse an existing `pena simulate` output instead of simulating),
+# PENA_DDS_DOMAIN (default: the first free of 30..99, locked with /tmp/pena-dds-domain-N.lock).
+# Every process started here is stopped on exit (normal, error, Ctrl-C); nothing is left running.
+set -euo pipefail
+
+REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+BUILD=${PENA_BUILD:-$REPO/build}
+OUT=${1:?usage: run-team.sh OUT_DIR}
+RATE=${PENA_DEMO_RATE:-5}
+SEED=${PENA_DEMO_SEED:-1}
+PENA=$BUILD/tools/pena/pena
+FUSION_BIN=$BUILD/services/fusion/pena-fusion
+ENTITY_BIN=$BUILD/services/entity/pena-entity
+DDS_DIR=$REPO/deploy/dds
+# Every participant, ours and Fast DDS's defaults, stays on the loopback interface.
+export FASTRTPS_DEFAULT_PROFILES_FILE=$DDS_DIR/pena-loopback.xml
+
+for bin in "$PENA" "$FUSION_BIN" "$ENTITY_BIN"; do
+  [[ -x $bin ]] || { echo "run-team.sh: $bin not built (make pena pena-fusion pena-entity)" >&2; exit 1; }
+done
+
+PIDS=()
+cleanup() {
+  local pid
+  for pid in "${PIDS[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
+  for _ in $(seq 50); do
+    local alive=0
+    for pid in "${PIDS[@]}"; do kill -0 "$pid" 2>/dev/null && alive=1; done
+    ((alive)) || break
+    sleep 0.1
+  done
+  for pid in "${PIDS[@]}"; do kill -KILL "$pid" 2>/dev/null || true; done
+  wait 2>/dev/null || true
+}
+trap cleanup EXIT
+trap 'exit 130' INT TERM
+
+if [[ -z ${PENA_DDS_DOMAIN:-} ]]; then
+  for d in $(seq 30 99); do
+    exec {lock_fd}>"/tmp/pena-dds-domain-$d.lock"
+    if flock -n "$lock_fd"; then PENA_DDS_DOMAIN=$d; break; fi
+    exec {lock_fd}>&-
+  done
+fi
+DOMAIN=${PENA_DDS_DOMAIN:?no free DDS domain in 30..99}
+
+mkdir -p "$OUT"
+OUT=$(cd "$OUT" && pwd)
+rm -rf "$OUT/fusion" "$OUT/logs"
+mkdir -p "$OUT/fusion" "$OUT/logs"
+START=$SECONDS
+
+MISSION=${PENA_DEMO_MISSION:-$OUT/mission}
+if [[ -z ${PENA_DEMO_MISSION:-} ]]; then
+  echo "== simulating the team mission (seed $SEED) into $MISSION"
+  "$PENA" simulate --scenario team --seed "$SEED" --out "$MISSION" > "$OUT/logs/simulate.log"
+fi
+MISSION=$(cd "$MISSION" && pwd)
+
+cat > "$OUT/fusion.conf" <<CONF
+# pena-fusion config of this demo run (FusionConfig, docs/fusion-service.md)
+state_dir: "fusion/state"
+plan: "$MISSION/apriori.csv"
+output_dir: "fusion"
+dds {
+  profiles_files: "$DDS_DIR/pena-loopback.xml"
+  profiles_files: "$DDS_DIR/pena-qos.xml"
+  domain_id: $DOMAIN
+}
+CONF
+
+echo "== pena-fusion (DDS domain $DOMAIN, loopback only)"
+"$FUSION_BIN" --config "$OUT/fusion.conf" > "$OUT/logs/fusion.log" 2>&1 &
+FUSION_PID=$!
+PIDS+=("$FUSION_PID")
+
+ENTITY_PIDS=()
+ENTITIES=()
+for dir in "$MISSION"/*/; do
+  [[ -f $dir/sensors.penalog ]] || continue
+  id=$(basename "$dir")
+  ENTITIES+=("$id")
+  rm -rf "${OUT:?}/$id"
+  "$ENTITY_BIN" --input "$dir" --rate "$RATE" --out "$OUT/$id" --domain "$DOMAIN" \
+    --profiles-file "$DDS_DIR/pena-loopback.xml" --profiles-file "$DDS_DIR/pena-qos.xml" \
+    --wait-for-readers 20 --linger 5 > "$OUT/logs/$id.log" 2>&1 &
+  ENTITY_PIDS+=("$!")
+  PIDS+=("$!")
+done
+echo "== ${#ENTITIES[@]} pena-entity processes (${ENTITIES[*]}) at $RATE x real time"
+
+failed=0
+for i in "${!ENTITY_PIDS[@]}"; do
+  if ! wait "${ENTITY_PIDS[$i]}"; then
+    echo "run-team.sh: pena-entity ${ENTITIES[$i]} failed; see $OUT/logs/${ENTITIES[$i]}.log" >&2
+    failed=1
+  fi
+done
+# Let the fusion take the last deltas and snapshots, then stop it cleanly (it writes its outputs).
+sleep 2
+kill -TERM "$FUSION_PID"
+if ! wait "$FUSION_PID"; then
+  echo "run-team.sh: pena-fusion failed; see $OUT/logs/fusion.log" >&2
+  exit 1
+fi
+((failed == 0)) || exit 1
+echo "== mission finished in $((SECONDS - START)) s; writing the report"
+
+"$PENA" report --mission "$MISSION" --run "$OUT" | tee "$OUT/logs/report.log"
+echo "== demo output: $OUT (report.md, report.json, global_map.png/.svg/.csv, <entity>/trajectory.tum)"

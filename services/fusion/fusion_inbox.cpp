@@ -1,0 +1,250 @@
+// pena-fusion: what the worker does with the samples its listeners queued. Part of
+// FusionService (fusion_service.hpp).
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "from_dds.hpp"
+#include "fusion_service.hpp"
+#include "pena/fusion/correction.hpp"
+#include "to_dds.hpp"
+
+namespace pena::services {
+namespace {
+
+// The participant part (GUID prefix, 12 bytes) of a publication handle.
+std::string ParticipantOf(const Handle& publication) {
+  return std::string(reinterpret_cast<const char*>(publication.data()), 12);
+}
+
+template <class PubSubType>
+std::uint32_t SizeOf(const typename PubSubType::type& sample) {
+  PubSubType type;
+  return type.getSerializedSizeProvider(const_cast<typename PubSubType::type*>(&sample))();
+}
+
+bool IsIdentity(const geometry::Pose2& pose) {
+  return pose.x_m == 0.0 && pose.y_m == 0.0 && pose.theta_rad == 0.0;
+}
+
+fusion::AnnotationKind FromDds(pena_dds::AnnotationKind kind) {
+  switch (kind) {
+    case pena_dds::ANNOTATION_DANGEROUS_AREA: return fusion::AnnotationKind::kDangerousArea;
+    case pena_dds::ANNOTATION_VICTIM_FOUND: return fusion::AnnotationKind::kVictimFound;
+    case pena_dds::ANNOTATION_CORRIDOR_CROSSING: return fusion::AnnotationKind::kCorridorCrossing;
+    case pena_dds::ANNOTATION_ELEVATOR: return fusion::AnnotationKind::kElevator;
+    case pena_dds::ANNOTATION_STAIRS:
+    case pena_dds::ANNOTATION_EXIT: return fusion::AnnotationKind::kLandmark;
+    case pena_dds::ANNOTATION_FREE_TEXT: break;
+  }
+  return fusion::AnnotationKind::kNote;
+}
+
+}  // namespace
+
+bool FusionService::FromSelf(const SampleMeta& meta) const {
+  const auto& prefix = participant_.get()->guid().guidPrefix.value;
+  for (std::size_t i = 0; i < 12; ++i) {
+    if (meta.publication[i] != prefix[i]) return false;
+  }
+  return true;
+}
+
+void FusionService::Dispatch(const Event& event) {
+  try {
+    std::visit([&](const auto& sample) { Handle(sample, event.meta); }, event.sample);
+  } catch (const std::logic_error& error) {
+    // Another schema version, a malformed or oversized sample: dropped, the service goes on.
+    stats_.Add("samples_dropped");
+    spdlog::warn("sample dropped: {}", error.what());
+  }
+}
+
+void FusionService::EnsureJoined(const std::string& entity_id, const SampleMeta& meta) {
+  entity_of_participant_[ParticipantOf(meta.publication)] = entity_id;
+  if (store_->state().entity(entity_id) != nullptr) return;
+  // The entity's local map is in the mission frame its known start gives: map_from_entity = I.
+  Apply(fusion::EntityJoin{NowS(), entity_id, geometry::Pose2{}});
+}
+
+void FusionService::Handle(const pena_dds::EntityPose& sample, const SampleMeta& meta) {
+  const std::string entity_id = sample.entity_id().to_string();
+  entity_of_participant_[ParticipantOf(meta.publication)] = entity_id;
+  stats_.Count("received", topics::kPose.name, entity_id,
+               SizeOf<pena_dds::EntityPosePubSubType>(sample));
+  stats_.Pose(entity_id, static_cast<double>(meta.reception_time_ns - meta.source_time_ns) * 1e-9,
+              sample.stamp_s(), FromDds(sample.world_from_body()),
+              FromDds(sample.odom_from_body()));
+}
+
+void FusionService::Handle(const pena_dds::EntityStatus& sample, const SampleMeta& meta) {
+  CheckSchemaVersion(sample.schema_version(), "EntityStatus");
+  const std::string entity_id = sample.entity_id().to_string();
+  stats_.Count("received", topics::kStatus.name, entity_id,
+               SizeOf<pena_dds::EntityStatusPubSubType>(sample));
+  EnsureJoined(entity_id, meta);
+  const fusion::EntityStatus* status = store_->state().entity(entity_id);
+  const bool left = status != nullptr && status->lifecycle == fusion::EntityLifecycle::kLeft;
+  if (sample.state() == pena_dds::ENTITY_FINISHED || sample.state() == pena_dds::ENTITY_FAILED) {
+    if (!left) {
+      spdlog::info("{} is leaving ({}{})", entity_id,
+                   sample.state() == pena_dds::ENTITY_FAILED ? "failed" : "finished",
+                   sample.message().size() == 0 ? "" : ": " + sample.message().to_string());
+      Apply(fusion::EntityLeave{NowS(), entity_id});
+    }
+  } else if (sample.state() == pena_dds::ENTITY_RUNNING) {
+    Apply(fusion::EntityHeartbeat{NowS(), entity_id});
+  }
+}
+
+void FusionService::Handle(const pena_dds::LineMapDelta& sample, const SampleMeta& meta) {
+  const std::string entity_id = sample.entity_id().to_string();
+  stats_.Count("received", topics::kLineMapDelta.name, entity_id,
+               SizeOf<pena_dds::LineMapDeltaPubSubType>(sample));
+  line_map::MapDelta delta = services::FromDds(sample);
+  EnsureJoined(entity_id, meta);
+  Apply(fusion::LocalDelta{NowS(), entity_id, std::move(delta)});
+}
+
+void FusionService::Handle(const pena_dds::LineMapSnapshot& sample, const SampleMeta& meta) {
+  const std::string entity_id = sample.entity_id().to_string();
+  stats_.Count("received", topics::kLineMapSnapshot.name, entity_id,
+               SizeOf<pena_dds::LineMapSnapshotPubSubType>(sample));
+  line_map::MapSnapshot snapshot = services::FromDds(sample);
+  EnsureJoined(entity_id, meta);
+  // Already held (the entity's final snapshot after every delta arrived): nothing to journal.
+  const line_map::LineMap& local = store_->state().local_map(entity_id);
+  if (local.version() == snapshot.version && line_map::SameMap(local.Snapshot(), snapshot)) return;
+  Apply(fusion::LocalSnapshot{NowS(), entity_id, std::move(snapshot)});
+}
+
+void FusionService::Handle(const pena_dds::ReferenceScan& sample, const SampleMeta& /*meta*/) {
+  const std::string entity_id = sample.entity_id().to_string();
+  stats_.Count("received", topics::kReferenceScan.name, entity_id,
+               SizeOf<pena_dds::ReferenceScanPubSubType>(sample));
+  if (!options_.corrections) return;
+  CheckSchemaVersion(sample.schema_version(), "ReferenceScan");
+  const std::int64_t now_ns = NowNs();
+  std::int64_t& last = last_correction_ns_[entity_id];
+  if (now_ns - last < static_cast<std::int64_t>(options_.correction_interval_s * 1e9)) return;
+  const fusion::EntityStatus* status = store_->state().entity(entity_id);
+  if (status == nullptr || !status->map_from_entity) return;
+  last = now_ns;
+  const geometry::Pose2 entity_from_body = services::FromDds(sample.world_from_body());
+  const geometry::Pose2 map_from_entity = *status->map_from_entity;
+  const fusion::FusionCorrection result = fusion::ComputeCorrection(
+      entity_id, services::FromDds(sample), entity_from_body, map_from_entity,
+      store_->state().CorrectionMap(entity_id));
+  stats_.Add("correction_attempts");
+  stats_.Add("correction_compute_us", (NowNs() - now_ns) / 1000);
+  if (!result.accepted) {
+    stats_.Add("corrections_rejected");
+    spdlog::debug("{}: no correction at reference {}: {}", entity_id, sample.seq(), result.reason);
+    return;
+  }
+  const geometry::Pose2 corrected = geometry::Compose(result.map_from_entity, entity_from_body);
+  const geometry::Pose2 move =
+      geometry::Between(geometry::Compose(map_from_entity, entity_from_body), corrected);
+  if (std::hypot(move.x_m, move.y_m) < options_.correction_min_m &&
+      std::abs(move.theta_rad) < options_.correction_min_rad) {
+    stats_.Add("corrections_small");
+    return;
+  }
+  spdlog::info("{}: correction at reference {} moves it ({:.3f} m, {:.3f} m, {:.4f} rad), "
+               "score {:.2f}, confidence {:.2f}",
+               entity_id, sample.seq(), move.x_m, move.y_m, move.theta_rad, result.score,
+               result.confidence);
+  if (IsIdentity(map_from_entity)) {
+    // The entity corrects its own frame, so its later walls arrive corrected: the fusion keeps
+    // map_from_entity = I (docs/fusion.md, "Contract with the entity").
+    pipeline::Correction correction;
+    correction.kind = pipeline::Correction::Kind::kPose;
+    correction.stamp_s = sample.stamp_s();
+    correction.world_from_body = corrected;
+    correction.confidence = result.confidence;
+    SendCorrection(entity_id, correction, sample.seq());
+  } else {
+    // A placed entity keeps its own frame: the fusion moves its walls instead (journaled).
+    Apply(fusion::AlignmentCorrection{NowS(), entity_id, result.map_from_entity,
+                                      result.confidence});
+  }
+}
+
+void FusionService::Handle(const pena_dds::OperatorCorrection& sample, const SampleMeta& meta) {
+  if (FromSelf(meta)) return;
+  CheckSchemaVersion(sample.schema_version(), "OperatorCorrection");
+  stats_.Count("received", topics::kOperatorCorrection.name, sample.operator_id().to_string(),
+               SizeOf<pena_dds::OperatorCorrectionPubSubType>(sample));
+  if (sample.kind() != pena_dds::OPERATOR_SET_POSE) {
+    spdlog::warn("operator correction {}: only OPERATOR_SET_POSE is supported; ignored",
+                 sample.correction_id().to_string());
+    return;
+  }
+  const std::string entity_id = sample.target_entity_id().to_string();
+  // Relayed to the entity, which moves its own frame (its later walls arrive corrected).
+  pipeline::Correction correction;
+  correction.kind = pipeline::Correction::Kind::kPose;
+  correction.stamp_s = sample.stamp_s();
+  correction.world_from_body = services::FromDds(sample.world_from_body());
+  correction.confidence = 1.0;
+  SendCorrection(entity_id, correction, 0);
+  spdlog::info("operator {} set {}'s pose at {:.3f} s; relayed as a correction",
+               sample.operator_id().to_string(), entity_id, sample.stamp_s());
+}
+
+void FusionService::Handle(const pena_dds::Annotation& sample, const SampleMeta& meta) {
+  if (FromSelf(meta)) return;
+  CheckSchemaVersion(sample.schema_version(), "Annotation");
+  const std::string key = sample.annotation_id().to_string();
+  stats_.Count("received", topics::kAnnotation.name, sample.author_id().to_string(),
+               SizeOf<pena_dds::AnnotationPubSubType>(sample));
+  std::int64_t id = 0;
+  if (const auto it = annotation_ids_.find(key); it != annotation_ids_.end()) id = it->second;
+  for (const fusion::Annotation& known : store_->state().annotations()) {
+    // After a restart the operator's durable samples come again: the same author and stamp is
+    // the same mark.
+    if (id == 0 && known.author == sample.author_id().to_string() &&
+        known.stamp_s == sample.stamp_s()) {
+      id = known.id;
+    }
+  }
+  if (sample.retracted()) {
+    if (id != 0) Apply(fusion::RemoveAnnotation{NowS(), id, sample.author_id().to_string()});
+    annotation_ids_.erase(key);
+  } else {
+    fusion::Annotation annotation;
+    annotation.id = id;
+    annotation.kind = FromDds(sample.kind());
+    annotation.position_m = {sample.position().x_m(), sample.position().y_m()};
+    annotation.radius_m = sample.radius_m();
+    annotation.text = sample.text().to_string();
+    annotation.author = sample.author_id().to_string();
+    annotation.stamp_s = sample.stamp_s();
+    const fusion::FusionOutput output = Apply(fusion::PutAnnotation{NowS(), annotation});
+    if (output.annotation) annotation_ids_[key] = output.annotation->annotation.id;
+  }
+  // Relayed so that late joiners get it after the operator left (same key: readers replace).
+  pena_dds::Annotation relay = sample;
+  if (annotation_writer_) annotation_writer_->Write(relay);
+}
+
+void FusionService::Handle(const pena_dds::SyncRequest& sample, const SampleMeta& meta) {
+  if (FromSelf(meta) || sample.target_id().to_string() != kGlobalMapId) return;
+  spdlog::info("{} asked for the global map (it holds version {})",
+               sample.requester_id().to_string(), sample.have_version());
+  PublishSnapshot();
+}
+
+void FusionService::Handle(const LivelinessChange& change, const SampleMeta& /*meta*/) {
+  const auto it = entity_of_participant_.find(ParticipantOf(change.publication));
+  const std::string who = it != entity_of_participant_.end() ? it->second : "an unknown writer";
+  if (change.not_alive_change > 0) {
+    spdlog::warn("{} went silent (liveliness lost); marked lost after {} s without data", who,
+                 options_.store.fusion.silent_after_s);
+  } else if (change.alive_change > 0) {
+    spdlog::info("{} is alive (liveliness)", who);
+  }
+}
+
+}  // namespace pena::services

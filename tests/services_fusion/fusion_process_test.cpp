@@ -1,0 +1,261 @@
+// pena-fusion with four pena-entity processes on loopback DDS (the team demo, issue 6): the global
+// map covers the walls the entities saw; a late joiner gets the whole global map within 2 s; a
+// fusion killed with kill -9 mid-mission and restarted ends with the same map, versions
+// contiguous; a bad config exits non-zero naming file and line. Every participant uses
+// deploy/dds/pena-loopback.xml and a domain of its own.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+
+#include <chrono>
+#include <map>
+#include <optional>
+
+#include "dds_endpoints.hpp"
+#include "from_dds.hpp"
+#include "pena/eval/line_map_error.hpp"
+#include "pena/io/line_csv.hpp"
+#include "pena/line_map/line_map.hpp"
+#include "pena/sim/mission_writer.hpp"
+#include "pena/sim/scenario.hpp"
+#include "pena/sim/simulator.hpp"
+#include "pena_dds/global_mapPubSubTypes.h"
+#include "process_support.hpp"
+#include "service_test_support.hpp"
+#include "work_queue.hpp"
+
+namespace pena::services {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// Mission time runs this many times faster than real time (the demo uses 5).
+constexpr double kRate = 6.0;
+
+const fs::path& TeamMission() {
+  static const fs::path dir = [] {
+    const sim::Scenario scenario =
+        sim::ParseScenario(*sim::BuiltinScenarioText("team"), "builtin:team");
+    const sim::SimulationResult result = sim::Simulator{sim::SimulationOptions{}}.Run(scenario);
+    const fs::path out = testing::ScratchDir("team");
+    sim::WriteMission(scenario, result, out, "fusion_process_test");
+    return out;
+  }();
+  return dir;
+}
+
+std::vector<std::string> DdsArgs(int domain) {
+  const fs::path dds = fs::path(PENA_SOURCE_DIR) / "deploy" / "dds";
+  return {"--domain", std::to_string(domain), "--profiles-file",
+          (dds / "pena-loopback.xml").string(), "--profiles-file", (dds / "pena-qos.xml").string()};
+}
+
+pid_t SpawnFusion(int domain, const fs::path& run, bool corrections) {
+  std::vector<std::string> args{PENA_FUSION_BIN, "--state-dir", (run / "state").string(), "--plan",
+                                (TeamMission() / "apriori.csv").string(), "--out",
+                                (run / "fusion").string()};
+  if (!corrections) args.push_back("--no-corrections");
+  for (const std::string& arg : DdsArgs(domain)) args.push_back(arg);
+  return testing::Spawn(args, run / "fusion.log");
+}
+
+std::vector<pid_t> SpawnEntities(int domain, const fs::path& run) {
+  std::vector<pid_t> pids;
+  for (const char* id : {"ff1", "ff2", "ff3", "robot1"}) {
+    std::vector<std::string> args{PENA_ENTITY_BIN, "--input", (TeamMission() / id).string(),
+                                  "--rate", std::to_string(kRate), "--out", (run / id).string(),
+                                  "--wait-for-readers", "30", "--linger", "5"};
+    for (const std::string& arg : DdsArgs(domain)) args.push_back(arg);
+    pids.push_back(testing::Spawn(args, run / (std::string(id) + ".log")));
+  }
+  return pids;
+}
+
+// A subscriber of the global map: every delta (versions) and the map they rebuild.
+struct GlobalListener {
+  explicit GlobalListener(int domain)
+      : participant(testing::LoopbackDds(domain), "test-global-listener"),
+        deltas(participant, topics::kGlobalMapDelta,
+               [this](pena_dds::GlobalMapDelta&& s, const SampleMeta&) { delta_queue.Push(std::move(s)); }),
+        snapshots(participant, topics::kGlobalMapSnapshot,
+                  [this](pena_dds::GlobalMapSnapshot&& s, const SampleMeta&) {
+                    snapshot_queue.Push(std::move(s));
+                  }) {}
+
+  // Applies what arrived; deltas in order, a snapshot newer than the map replaces it.
+  void Drain() {
+    while (auto snapshot = snapshot_queue.TryPop()) {
+      line_map::MapSnapshot s = FromDds(*snapshot);
+      if (s.version > map.version()) map = line_map::LineMap::FromSnapshot(s);
+    }
+    while (auto delta = delta_queue.TryPop()) {
+      versions.emplace_back(delta->from_version(), delta->to_version());
+      map.Apply(FromDds(*delta));  // stale deltas (already in a snapshot) are refused: fine
+    }
+  }
+
+  WorkQueue<pena_dds::GlobalMapDelta> delta_queue;
+  WorkQueue<pena_dds::GlobalMapSnapshot> snapshot_queue;
+  line_map::LineMap map;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> versions;
+  Participant participant;
+  Reader<pena_dds::GlobalMapDeltaPubSubType> deltas;
+  Reader<pena_dds::GlobalMapSnapshotPubSubType> snapshots;
+};
+
+void WaitEntities(const std::vector<pid_t>& pids, const fs::path& run) {
+  for (pid_t pid : pids) {
+    ASSERT_GT(pid, 0);
+    ASSERT_EQ(testing::WaitExit(pid, 240.0), 0) << testing::ReadFile(run / "fusion.log");
+  }
+}
+
+// Segments some entity saw (provenance not only "plan:...").
+std::vector<geometry::Segment2> ObservedPart(const std::vector<io::LineRow>& rows) {
+  std::vector<geometry::Segment2> out;
+  for (const io::LineRow& row : rows) {
+    const std::string provenance = row.extra.substr(row.extra.rfind(',') + 1);
+    std::stringstream keys(provenance);
+    bool observed = false;
+    for (std::string key; keys >> key;) observed |= key.rfind("plan:", 0) != 0;
+    if (observed) out.push_back(row.segment);
+  }
+  return out;
+}
+
+// Largest endpoint distance from a segment of `a` to its nearest counterpart in `b` (either
+// direction), metres; infinity if the counts differ.
+double MaxSegmentDistance(const std::vector<io::LineRow>& a, const std::vector<io::LineRow>& b) {
+  if (a.size() != b.size()) return std::numeric_limits<double>::infinity();
+  double worst = 0.0;
+  for (const io::LineRow& x : a) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const io::LineRow& y : b) {
+      const double same = std::max((x.segment.start_m - y.segment.start_m).norm(),
+                                   (x.segment.end_m - y.segment.end_m).norm());
+      const double flipped = std::max((x.segment.start_m - y.segment.end_m).norm(),
+                                      (x.segment.end_m - y.segment.start_m).norm());
+      best = std::min({best, same, flipped});
+    }
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+int StopFusion(pid_t pid) {
+  kill(pid, SIGTERM);
+  return testing::WaitExit(pid, 30.0);
+}
+
+TEST(FusionProcess, TeamGlobalMapCoversObservedWallsAndLateJoinerGetsItWithinTwoSeconds) {
+  const int domain = testing::TestDomain(30);
+  const fs::path run = testing::ScratchDir("team-run");
+  GlobalListener listener(domain);
+  const pid_t fusion = SpawnFusion(domain, run, true);
+  ASSERT_GT(fusion, 0);
+  WaitEntities(SpawnEntities(domain, run), run);
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  listener.Drain();
+  const std::uint64_t final_version = listener.map.version();
+  ASSERT_GT(final_version, 0u);
+  // A late joiner: everything arrives from the durable snapshot and deltas.
+  const auto joined = Clock::now();
+  GlobalListener late(domain);
+  while (late.map.version() < final_version && Clock::now() - joined < std::chrono::seconds(5)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    late.Drain();
+  }
+  const double late_s = std::chrono::duration<double>(Clock::now() - joined).count();
+  EXPECT_LT(late_s, 2.0) << "version " << late.map.version() << " of " << final_version;
+  EXPECT_TRUE(line_map::SameMap(late.map.Snapshot(), listener.map.Snapshot()));
+  const std::string log = testing::ReadFile(run / "fusion.log");
+  ASSERT_EQ(StopFusion(fusion), 0) << log;
+  // Every delta arrived, in order, without a gap.
+  for (std::size_t i = 1; i < listener.versions.size(); ++i) {
+    EXPECT_EQ(listener.versions[i].first, listener.versions[i - 1].second) << i;
+  }
+  const auto rows = io::ReadLineCsv(run / "fusion" / "global_map.csv");
+  EXPECT_EQ(rows.size(), listener.map.size());
+  const auto observed = io::ReadLineCsv(TeamMission() / "observed.csv");
+  std::vector<geometry::Segment2> walls;
+  for (const io::LineRow& row : observed) walls.push_back(row.segment);
+  const eval::LineMapErrorSummary score = eval::EvaluateLineMap(ObservedPart(rows), walls);
+  std::printf("[ figures  ] team global map: %zu segments, coverage %.1f%%, precision %.1f%%, "
+              "%.2f segments per wall; late joiner %.3f s\n",
+              score.map_segments, 100 * score.coverage, 100 * score.precision,
+              score.fragmentation, late_s);
+  EXPECT_GE(score.coverage, 0.90);
+  // Issue 6 asks for precision >= 95 %; the demo reaches about 52 % because the firefighters'
+  // odometry drifts 0.7-0.8 m before corrections land (docs/demo.md). Until that is fixed this
+  // is a regression floor, not the target: the issue stays open on it.
+  EXPECT_GE(score.precision, 0.45);
+  EXPECT_LE(score.fragmentation, 1.5);
+}
+
+TEST(FusionProcess, KillNineAndRestartEndsWithTheSameMapAndContiguousVersions) {
+  // Without corrections the entities' local maps do not depend on timing, so two runs must end
+  // with the same global map.
+  const int domain = testing::TestDomain(40);
+  const fs::path reference = testing::ScratchDir("reference");
+  {
+    const pid_t fusion = SpawnFusion(domain, reference, false);
+    WaitEntities(SpawnEntities(domain, reference), reference);
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    ASSERT_EQ(StopFusion(fusion), 0) << testing::ReadFile(reference / "fusion.log");
+  }
+  const fs::path run = testing::ScratchDir("killed");
+  GlobalListener listener(domain);
+  pid_t fusion = SpawnFusion(domain, run, false);
+  const std::vector<pid_t> entities = SpawnEntities(domain, run);
+  // Mid-mission (the team mission lasts about 190 s of mission time).
+  std::this_thread::sleep_for(std::chrono::milliseconds(static_cast<long>(90.0 / kRate * 1000)));
+  kill(fusion, SIGKILL);
+  EXPECT_EQ(testing::WaitExit(fusion, 10.0), 128 + SIGKILL);
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  fusion = SpawnFusion(domain, run, false);
+  WaitEntities(entities, run);
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  const std::string log = testing::ReadFile(run / "fusion.log");
+  ASSERT_EQ(StopFusion(fusion), 0) << log;
+  EXPECT_NE(log.find("journal records replayed"), std::string::npos);
+  listener.Drain();
+  // The fusion's own log of published deltas (append-only across the restart): contiguous.
+  const std::string versions = testing::ReadFile(run / "fusion" / "global_versions.csv");
+  std::stringstream lines(versions);
+  std::uint64_t previous = 0;
+  long count = 0;
+  for (std::string line; std::getline(lines, line); ++count) {
+    const std::uint64_t from = std::stoull(line.substr(0, line.find(',')));
+    const std::uint64_t to = std::stoull(line.substr(line.find(',') + 1));
+    if (count > 0) {
+      EXPECT_EQ(from, previous) << "line " << count + 1;
+    }
+    previous = to;
+  }
+  EXPECT_GT(count, 10);
+  const auto killed_rows = io::ReadLineCsv(run / "fusion" / "global_map.csv");
+  const auto reference_rows = io::ReadLineCsv(reference / "fusion" / "global_map.csv");
+  EXPECT_LE(MaxSegmentDistance(killed_rows, reference_rows), 0.01)
+      << killed_rows.size() << " vs " << reference_rows.size() << " segments";
+  EXPECT_EQ(listener.map.version(), previous);
+}
+
+TEST(FusionProcess, BadConfigExitsNonZeroNamingFileAndLine) {
+  testing::UseLoopbackByDefault();
+  const fs::path dir = testing::ScratchDir("badconfig");
+  std::ofstream(dir / "fusion.conf") << "state_dir: \"state\"\nsilent_after: 3\n";
+  const pid_t pid =
+      testing::Spawn({PENA_FUSION_BIN, "--config", (dir / "fusion.conf").string()}, dir / "log");
+  EXPECT_EQ(testing::WaitExit(pid, 20.0), 1);
+  EXPECT_NE(testing::ReadFile(dir / "log").find("fusion.conf:2"), std::string::npos)
+      << testing::ReadFile(dir / "log");
+  const pid_t dds = testing::Spawn({PENA_FUSION_BIN, "--state-dir", (dir / "state").string(),
+                                    "--profile", "no_such_profile"},
+                                   dir / "log2");
+  EXPECT_EQ(testing::WaitExit(dds, 20.0), 2);
+  EXPECT_NE(testing::ReadFile(dir / "log2").find("no_such_profile"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace pena::services
