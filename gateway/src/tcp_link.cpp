@@ -1,5 +1,7 @@
 #include "pena/gateway/tcp_link.hpp"
 
+#include "ipv4_address.hpp"
+
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
@@ -16,16 +18,6 @@
 namespace pena::gateway {
 namespace {
 
-sockaddr_in Address(const std::string& host, std::uint16_t port) {
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(port);
-  if (inet_pton(AF_INET, host.c_str(), &address.sin_addr) != 1) {
-    throw std::runtime_error("tcp link: '" + host + "' is not an IPv4 address");
-  }
-  return address;
-}
-
 double MonotonicS() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
@@ -39,7 +31,7 @@ void NoDelay(int fd) {
 
 TcpLink::TcpLink(TcpLinkOptions options) : options_(std::move(options)) {
   if (!options_.listen) return;
-  const sockaddr_in local = Address(options_.bind_address, options_.bind_port);
+  const sockaddr_in local = Ipv4Address(options_.bind_address, options_.bind_port, "tcp");
   listen_fd_ = socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   const int one = 1;
   setsockopt(listen_fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
@@ -79,7 +71,7 @@ void TcpLink::TryConnect() {
   }
   if (fd_ >= 0 || MonotonicS() < next_connect_s_) return;
   next_connect_s_ = MonotonicS() + 1.0;
-  const sockaddr_in peer = Address(options_.peer_address, options_.peer_port);
+  const sockaddr_in peer = Ipv4Address(options_.peer_address, options_.peer_port, "tcp");
   fd_ = socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   NoDelay(fd_);
   if (connect(fd_, reinterpret_cast<const sockaddr*>(&peer), sizeof(peer)) != 0 && errno != EINPROGRESS) {

@@ -1,5 +1,7 @@
 #include "pena/gateway/udp_link.hpp"
 
+#include "ipv4_address.hpp"
+
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
@@ -13,23 +15,10 @@
 #include <stdexcept>
 
 namespace pena::gateway {
-namespace {
-
-sockaddr_in Address(const std::string& host, std::uint16_t port) {
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(port);
-  if (inet_pton(AF_INET, host.c_str(), &address.sin_addr) != 1) {
-    throw std::runtime_error("udp link: '" + host + "' is not an IPv4 address");
-  }
-  return address;
-}
-
-}  // namespace
 
 UdpLink::UdpLink(UdpLinkOptions options) : options_(std::move(options)) {
-  const sockaddr_in local = Address(options_.bind_address, options_.bind_port);
-  Address(options_.peer_address, options_.peer_port);  // validate early
+  const sockaddr_in local = Ipv4Address(options_.bind_address, options_.bind_port, "udp");
+  Ipv4Address(options_.peer_address, options_.peer_port, "udp");  // validate early
   fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (fd_ < 0) throw std::runtime_error(std::string("udp link: socket: ") + std::strerror(errno));
   if (bind(fd_, reinterpret_cast<const sockaddr*>(&local), sizeof(local)) != 0) {
@@ -49,7 +38,7 @@ UdpLink::~UdpLink() {
 }
 
 bool UdpLink::Send(const std::string& frame, std::string* error) {
-  const sockaddr_in peer = Address(options_.peer_address, options_.peer_port);
+  const sockaddr_in peer = Ipv4Address(options_.peer_address, options_.peer_port, "udp");
   const ssize_t sent = sendto(fd_, frame.data(), frame.size(), 0,
                               reinterpret_cast<const sockaddr*>(&peer), sizeof(peer));
   if (sent == static_cast<ssize_t>(frame.size())) return true;
@@ -62,7 +51,7 @@ std::vector<std::string> UdpLink::Receive(double timeout_s) {
   pollfd descriptor{fd_, POLLIN, 0};
   const int timeout_ms = static_cast<int>(std::lround(std::max(0.0, timeout_s) * 1000.0));
   if (poll(&descriptor, 1, timeout_ms) <= 0) return frames;
-  const sockaddr_in peer = Address(options_.peer_address, options_.peer_port);
+  const sockaddr_in peer = Ipv4Address(options_.peer_address, options_.peer_port, "udp");
   std::string buffer(65536, '\0');
   while (true) {
     sockaddr_in from{};
