@@ -1,0 +1,60 @@
+#pragma once
+// Keyframe SLAM above the laser odometry (docs/slam.md): Cartographer's global SLAM in small.
+// The odometry's poses chain keyframes into a pose graph; each keyframe is matched (correlation
+// matcher, branch and bound in a window that grows with the distance walked since the last
+// closure) against the submap around the nearest older keyframe; accepted matches become loop
+// edges and the graph is re-optimised, so a place walked twice ends up drawn once.
+
+#include <memory>
+#include <vector>
+
+#include "pena/geometry/pose2.hpp"
+#include "pena/geometry/trajectory.hpp"
+#include "pena/sensors/laser_scan.hpp"
+#include "pena/slam/pose_graph.hpp"
+#include "pena/slam/slam_options.hpp"
+
+namespace pena::slam {
+
+// Counters over the run, for summaries.
+struct SlamCounts {
+  long scans = 0;
+  long keyframes = 0;
+  long loop_checks = 0;       // matches tried
+  long loop_matched = 0;      // scored above loop_min_score and well conditioned
+  long loop_closures = 0;     // kept after optimisation
+  long loop_rejected = 0;     // dropped by the chi2 test after optimisation
+  long local_checks = 0;      // scan-to-submap refinements tried
+  long local_matches = 0;     // kept as edges
+  long optimisations = 0;
+};
+
+// One entity's SLAM. Not thread-safe.
+class KeyframeSlam {
+ public:
+  // Throws std::invalid_argument naming the field for invalid options.
+  explicit KeyframeSlam(const SlamOptions& options = {});
+  ~KeyframeSlam();
+  KeyframeSlam(KeyframeSlam&&) noexcept;
+  KeyframeSlam& operator=(KeyframeSlam&&) noexcept;
+
+  // Adds a scan with its odometry pose (world frame, laser at the body origin), in time order.
+  // Returns the corrected pose of the scan (world frame).
+  geometry::Pose2 Add(const sensors::LaserScan& scan, const geometry::Pose2& world_from_odometry);
+
+  // Re-optimises the graph (a last time after the final scan).
+  void Finish();
+
+  // Corrected poses of every scan added so far: each scan keeps its odometry motion relative to
+  // the keyframe before it, which takes its optimised pose.
+  geometry::Trajectory Trajectory() const;
+  // The graph (nodes: keyframes in order).
+  const PoseGraph& graph() const;
+  const SlamCounts& counts() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pena::slam

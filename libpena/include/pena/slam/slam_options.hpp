@@ -1,0 +1,59 @@
+#pragma once
+// Options of the keyframe SLAM above the laser odometry (docs/slam.md).
+
+#include "pena/scan_matching/correlation_scan_matcher.hpp"
+
+namespace pena::slam {
+
+// Validated by ValidateSlamOptions (and the KeyframeSlam constructor); messages name the field.
+struct SlamOptions {
+  // A scan becomes a keyframe (a graph node) after this much odometry motion.
+  double keyframe_distance_m = 0.3;
+  double keyframe_angle_rad = 0.17453292519943295;  // 10 deg
+  double min_range_m = 0.1;   // closer returns are the carrier's own body
+  double max_range_m = 30.0;  // farther returns are too sparse to match on
+  // Loop closure: a keyframe is matched against the submap around the nearest older keyframe
+  // that lies at least loop_min_path_m back along the path and within the search radius.
+  double loop_min_path_m = 4.0;
+  int submap_keyframes = 12;         // keyframes on each side of that one in its submap
+  double submap_radius_m = 12.0;     // submap points farther from its centre are left out
+  double loop_window_m = 0.6;        // half-width of the search window right after a closure
+  double loop_window_per_m = 0.02;   // grows by this per metre walked since the last closure
+  double loop_window_max_m = 2.0;    // up to this
+  double loop_window_rad = 0.08726646259971647;      // 5 deg half-width after a closure
+  double loop_window_rad_per_m = 0.002;              // growth per metre
+  double loop_window_max_rad = 0.2617993877991494;   // 15 deg
+  // Keep only submap points that a second keyframe saw within 10 cm (a tilted body-worn laser's
+  // floor hits are seen once; as the odometry's confirm_reference).
+  // Off by default: on simulated seeds 1-2 it helped loop170 seed 1 and hurt the others.
+  bool confirm_reference = false;
+  double loop_min_score = 0.6;       // eq. 2 score a closure needs
+  double degenerate_eigen_ratio = 0.05;  // translation eigenvalue ratio below: corridor, refused
+  int loop_check_every = 1;          // try a closure at every n-th keyframe
+  // Scan-to-map refinement (Cartographer's local SLAM, here as graph edges): a keyframe without a
+  // loop candidate is matched against the submap of the local_submap_keyframes keyframes that
+  // end local_min_path_m back along the path (their long-range points pin the position along
+  // corridors, where the odometry keeps the stride model's estimate).
+  bool local_matching = false;  // off: it made the simulated maps worse (docs/slam.md)
+  double local_min_path_m = 1.0;
+  int local_submap_keyframes = 40;
+  double local_window_m = 0.5;                       // half-width
+  double local_window_rad = 0.05235987755982988;     // 3 deg half-width
+  scan_matching::CorrelationMatcherOptions matcher{0.06, 0.02, 8, 10, true};
+  // Edge uncertainties (1 sigma). Odometry between consecutive keyframes: a floor plus a share
+  // of the motion; loop closures: fixed.
+  double odometry_sigma_m = 0.02;
+  double odometry_sigma_per_m = 0.10;
+  double odometry_sigma_rad = 0.005;
+  double odometry_sigma_rad_per_m = 0.01;
+  double loop_sigma_m = 0.05;
+  double loop_sigma_rad = 0.01;
+  int optimize_iterations = 10;
+  double max_loop_chi2 = 25.0;  // a closure disagreeing more than this after optimising is dropped
+};
+
+// Throws std::invalid_argument naming the field and its unit, e.g.
+// "slam.keyframe_distance_m must be > 0 m, got -1".
+void ValidateSlamOptions(const SlamOptions& options);
+
+}  // namespace pena::slam

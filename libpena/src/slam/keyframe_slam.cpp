@@ -1,0 +1,214 @@
+#include "pena/slam/keyframe_slam.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "submap_matcher.hpp"
+
+namespace pena::slam {
+namespace {
+
+using geometry::Pose2;
+
+// A scan: its odometry pose and the keyframe it hangs from.
+struct ScanRecord {
+  double stamp_s = 0.0;
+  Pose2 world_from_odometry;
+  int keyframe = 0;
+};
+
+Eigen::Matrix3d Information(double sigma_m, double sigma_rad) {
+  return Eigen::Vector3d(1.0 / (sigma_m * sigma_m), 1.0 / (sigma_m * sigma_m),
+                         1.0 / (sigma_rad * sigma_rad))
+      .asDiagonal();
+}
+
+double Distance(const Pose2& a, const Pose2& b) {
+  return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m);
+}
+
+}  // namespace
+
+struct KeyframeSlam::Impl {
+  explicit Impl(const SlamOptions& o) : options(o), submaps(o), local_submaps(o) {}
+
+  SlamOptions options;
+  PoseGraph graph;
+  std::vector<internal::Keyframe> keyframes;
+  std::vector<ScanRecord> scans;
+  internal::SubmapMatcher submaps;
+  internal::SubmapMatcher local_submaps;
+  SlamCounts counts;
+  double path_m = 0.0;
+  double last_closure_path_m = 0.0;
+  long graph_version = 0;
+  std::optional<Pose2> last_odometry;
+
+  bool IsKeyframe(const Pose2& world_from_odometry) const {
+    if (keyframes.empty()) return true;
+    const Pose2 motion = geometry::Between(keyframes.back().world_from_odometry,
+                                           world_from_odometry);
+    return std::hypot(motion.x_m, motion.y_m) >= options.keyframe_distance_m ||
+           std::abs(motion.theta_rad) >= options.keyframe_angle_rad;
+  }
+
+  // Appends a node chained to the previous one by the odometry's motion.
+  void AddKeyframe(const sensors::LaserScan& scan, const Pose2& world_from_odometry) {
+    internal::Keyframe keyframe{scan.stamp_s, world_from_odometry,
+                                internal::KeyframePoints(scan, options), path_m};
+    if (keyframes.empty()) {
+      graph.AddNode(world_from_odometry);
+    } else {
+      const Pose2 motion = geometry::Between(keyframes.back().world_from_odometry,
+                                             world_from_odometry);
+      const int node = graph.AddNode(geometry::Compose(graph.nodes().back(), motion));
+      const double distance_m = std::hypot(motion.x_m, motion.y_m);
+      PoseEdge edge{node - 1, node, motion,
+                    Information(options.odometry_sigma_m + options.odometry_sigma_per_m * distance_m,
+                                options.odometry_sigma_rad +
+                                    options.odometry_sigma_rad_per_m * distance_m),
+                    false};
+      graph.AddEdge(edge);
+    }
+    keyframes.push_back(std::move(keyframe));
+    ++counts.keyframes;
+    const int index = static_cast<int>(keyframes.size()) - 1;
+    if (index % options.loop_check_every == 0 && TryLoopClosure(index)) return;
+    if (options.local_matching) TryLocalMatch(index);
+  }
+
+  // The nearest keyframe at least loop_min_path_m back along the path, within `radius_m`.
+  int LoopCandidate(int index, double radius_m) const {
+    const Pose2& pose = graph.nodes()[static_cast<std::size_t>(index)];
+    int best = -1;
+    double best_m = radius_m;
+    for (int j = 0; j < index; ++j) {
+      const internal::Keyframe& old = keyframes[static_cast<std::size_t>(j)];
+      if (keyframes[static_cast<std::size_t>(index)].path_m - old.path_m < options.loop_min_path_m) {
+        break;
+      }
+      const double d = Distance(pose, graph.nodes()[static_cast<std::size_t>(j)]);
+      if (d < best_m) {
+        best_m = d;
+        best = j;
+      }
+    }
+    return best;
+  }
+
+  // The last keyframe at least `back_m` back along the path from `index` (-1: none).
+  int LastAllowed(int index, double back_m) const {
+    const double limit_m = keyframes[static_cast<std::size_t>(index)].path_m - back_m;
+    int last = -1;
+    while (last + 1 < index && keyframes[static_cast<std::size_t>(last + 1)].path_m <= limit_m) {
+      ++last;
+    }
+    return last;
+  }
+
+  // Matches keyframe `index` against the submap around the loop candidate; true when a closure
+  // was kept.
+  bool TryLoopClosure(int index) {
+    const double since_m = path_m - last_closure_path_m;
+    const double half_m = std::min(options.loop_window_max_m,
+                                   options.loop_window_m + options.loop_window_per_m * since_m);
+    const double half_rad =
+        std::min(options.loop_window_max_rad,
+                 options.loop_window_rad + options.loop_window_rad_per_m * since_m);
+    const int candidate = LoopCandidate(index, half_m + options.keyframe_distance_m);
+    if (candidate < 0) return false;
+    ++counts.loop_checks;
+    const auto match = submaps.Match(keyframes, graph.nodes(), candidate, options.submap_keyframes,
+                                     LastAllowed(index, options.loop_min_path_m), graph_version,
+                                     keyframes[static_cast<std::size_t>(index)].points,
+                                     Prior(candidate, index), half_m, half_rad);
+    if (!match) return false;
+    ++counts.loop_matched;
+    if (!AddMatchEdge(candidate, index, *match)) {
+      ++counts.loop_rejected;
+      return false;
+    }
+    ++counts.loop_closures;
+    last_closure_path_m = path_m;
+    return true;
+  }
+
+  // Scan-to-map refinement against the recent submap ending local_min_path_m back.
+  void TryLocalMatch(int index) {
+    const int centre = LastAllowed(index, options.local_min_path_m);
+    if (centre < 0) return;
+    ++counts.local_checks;
+    const auto match = local_submaps.Match(
+        keyframes, graph.nodes(), centre, options.local_submap_keyframes, centre, graph_version,
+        keyframes[static_cast<std::size_t>(index)].points, Prior(centre, index),
+        options.local_window_m, options.local_window_rad);
+    if (match && AddMatchEdge(centre, index, *match)) ++counts.local_matches;
+  }
+
+  Pose2 Prior(int centre, int index) const {
+    return geometry::Between(graph.nodes()[static_cast<std::size_t>(centre)],
+                             graph.nodes()[static_cast<std::size_t>(index)]);
+  }
+
+  // Adds a robust match edge and re-optimises; drops it again when it disagrees with the graph.
+  bool AddMatchEdge(int centre, int index, const internal::LoopMatch& match) {
+    graph.AddEdge({centre, index, match.centre_from_scan,
+                   Information(options.loop_sigma_m, options.loop_sigma_rad), true});
+    Optimize();
+    if (graph.EdgeChi2(graph.edges().back()) > options.max_loop_chi2) {
+      graph.RemoveEdge(graph.edges().size() - 1);
+      Optimize();
+      return false;
+    }
+    return true;
+  }
+
+  void Optimize() {
+    graph.Optimize(options.optimize_iterations);
+    ++graph_version;
+    ++counts.optimisations;
+  }
+
+  Pose2 Corrected(const ScanRecord& scan) const {
+    const internal::Keyframe& keyframe = keyframes[static_cast<std::size_t>(scan.keyframe)];
+    return geometry::Compose(graph.nodes()[static_cast<std::size_t>(scan.keyframe)],
+                             geometry::Between(keyframe.world_from_odometry,
+                                               scan.world_from_odometry));
+  }
+};
+
+KeyframeSlam::KeyframeSlam(const SlamOptions& options) {
+  ValidateSlamOptions(options);
+  impl_ = std::make_unique<Impl>(options);
+}
+
+KeyframeSlam::~KeyframeSlam() = default;
+KeyframeSlam::KeyframeSlam(KeyframeSlam&&) noexcept = default;
+KeyframeSlam& KeyframeSlam::operator=(KeyframeSlam&&) noexcept = default;
+
+Pose2 KeyframeSlam::Add(const sensors::LaserScan& scan, const Pose2& world_from_odometry) {
+  Impl& s = *impl_;
+  if (s.last_odometry) s.path_m += Distance(*s.last_odometry, world_from_odometry);
+  s.last_odometry = world_from_odometry;
+  ++s.counts.scans;
+  if (s.IsKeyframe(world_from_odometry)) s.AddKeyframe(scan, world_from_odometry);
+  s.scans.push_back({scan.stamp_s, world_from_odometry, static_cast<int>(s.keyframes.size()) - 1});
+  return s.Corrected(s.scans.back());
+}
+
+void KeyframeSlam::Finish() { impl_->Optimize(); }
+
+geometry::Trajectory KeyframeSlam::Trajectory() const {
+  geometry::Trajectory trajectory;
+  trajectory.reserve(impl_->scans.size());
+  for (const ScanRecord& scan : impl_->scans) {
+    trajectory.push_back({scan.stamp_s, impl_->Corrected(scan)});
+  }
+  return trajectory;
+}
+
+const PoseGraph& KeyframeSlam::graph() const { return impl_->graph; }
+const SlamCounts& KeyframeSlam::counts() const { return impl_->counts; }
+
+}  // namespace pena::slam

@@ -1,0 +1,61 @@
+#pragma once
+// Loop-closure matching: a keyframe's scan against the submap of older keyframes around one of
+// them (internal to pena::slam).
+
+#include <optional>
+#include <vector>
+
+#include "pena/geometry/pose2.hpp"
+#include "pena/scan_matching/correlation_scan_matcher.hpp"
+#include "pena/scan_matching/point_set.hpp"
+#include "pena/slam/slam_options.hpp"
+
+namespace pena::slam::internal {
+
+// A graph node's scan: its odometry pose, its points (laser frame) and the path walked to it.
+struct Keyframe {
+  double stamp_s = 0.0;
+  geometry::Pose2 world_from_odometry;
+  scan_matching::Points2 points;
+  double path_m = 0.0;
+};
+
+// An accepted match: the scan's pose in the centre keyframe's frame, and its score.
+struct LoopMatch {
+  geometry::Pose2 centre_from_scan;
+  double score = 0.0;
+};
+
+// Builds (and keeps while neither the centre nor the graph changed) the matcher of one submap.
+class SubmapMatcher {
+ public:
+  explicit SubmapMatcher(const SlamOptions& options) : options_(options) {}
+
+  // Matches `scan` around `centre_from_prior` in a window of half-widths half_m / half_rad
+  // against keyframes [centre - submap_keyframes, centre + submap_keyframes] no later than
+  // `last_allowed`, placed by `poses`
+  // (world_from_keyframe). `graph_version` changes whenever `poses` do. nullopt when the match
+  // failed, scored below loop_min_score or was degenerate (a corridor).
+  std::optional<LoopMatch> Match(const std::vector<Keyframe>& keyframes,
+                                 const std::vector<geometry::Pose2>& poses, int centre,
+                                 int submap_keyframes, int last_allowed, long graph_version,
+                                 const scan_matching::Points2& scan,
+                                 const geometry::Pose2& centre_from_prior, double half_m,
+                                 double half_rad);
+
+ private:
+  void Build(const std::vector<Keyframe>& keyframes, const std::vector<geometry::Pose2>& poses,
+             int first, int centre, int last);
+
+  SlamOptions options_;
+  std::optional<scan_matching::CorrelationScanMatcher> matcher_;
+  int centre_ = -1;
+  int first_ = -1;
+  int last_ = -1;
+  long graph_version_ = -1;
+};
+
+// The scan's returns between min_range_m and max_range_m, laser frame.
+scan_matching::Points2 KeyframePoints(const sensors::LaserScan& scan, const SlamOptions& options);
+
+}  // namespace pena::slam::internal

@@ -1,0 +1,129 @@
+// The keyframe SLAM on a simulated corridor loop walked 1.3 times with a drifting heading.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pena/sim/laser_raycaster.hpp"
+#include "pena/slam/keyframe_slam.hpp"
+
+namespace pena::slam {
+namespace {
+
+using geometry::Pose2;
+using geometry::Segment2;
+
+// A 2 m wide corridor around a 8 m x 4 m block, with niches so no stretch is featureless.
+std::vector<Segment2> CorridorLoop() {
+  std::vector<Segment2> walls;
+  auto box = [&](double x0, double y0, double x1, double y1) {
+    walls.push_back({{x0, y0}, {x1, y0}});
+    walls.push_back({{x1, y0}, {x1, y1}});
+    walls.push_back({{x1, y1}, {x0, y1}});
+    walls.push_back({{x0, y1}, {x0, y0}});
+  };
+  box(-1.0, -1.0, 11.0, 7.0);  // outer walls
+  box(1.0, 1.0, 9.0, 5.0);     // the block
+  box(3.0, -1.0, 3.4, -0.6);   // pillars and cabinets along the walls
+  box(6.5, 6.5, 7.3, 7.0);
+  box(10.5, 2.5, 11.0, 3.2);
+  box(-1.0, 4.0, -0.6, 4.3);
+  box(5.0, 1.0, 5.5, 1.3);
+  return walls;
+}
+
+// The corridor's centre line: (0,0) -> (10,0) -> (10,6) -> (0,6) -> (0,0), 0.1 m per step.
+std::vector<Pose2> Walk(double laps) {
+  const Eigen::Vector2d corners[] = {{0, 0}, {10, 0}, {10, 6}, {0, 6}};
+  std::vector<Pose2> poses;
+  const double lap_m = 32.0;
+  for (double s = 0.0; s <= laps * lap_m; s += 0.1) {
+    double along = std::fmod(s, lap_m);
+    for (int side = 0; side < 4; ++side) {
+      const Eigen::Vector2d a = corners[side];
+      const Eigen::Vector2d b = corners[(side + 1) % 4];
+      const double length = (b - a).norm();
+      if (along <= length + 1e-9) {
+        const Eigen::Vector2d p = a + (b - a) * (along / length);
+        poses.push_back({p.x(), p.y(), std::atan2(b.y() - a.y(), b.x() - a.x())});
+        break;
+      }
+      along -= length;
+    }
+  }
+  return poses;
+}
+
+sensors::LaserScan Scan(const sim::LaserRaycaster& raycaster, const Pose2& pose, double stamp_s) {
+  sensors::LaserScan scan;
+  scan.stamp_s = stamp_s;
+  scan.geometry = {-std::numbers::pi / 2.0, std::numbers::pi / 360.0, 30.0};
+  sim::LaserPose laser;
+  laser.position_m = {pose.x_m, pose.y_m, 1.0};
+  laser.yaw_rad = pose.theta_rad;
+  for (int i = 0; i < 361; ++i) {
+    const sim::BeamHit hit = raycaster.Cast(laser, scan.BeamAngle(static_cast<std::size_t>(i)), 30.0);
+    scan.ranges_m.push_back(hit.kind == sim::HitKind::kWall ? static_cast<float>(hit.range_m)
+                                                            : sensors::LaserScan::kNoReturn);
+  }
+  return scan;
+}
+
+double Distance(const Pose2& a, const Pose2& b) { return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m); }
+
+TEST(KeyframeSlam, ClosesTheLoopAndRemovesTheHeadingDrift) {
+  const sim::LaserRaycaster raycaster(CorridorLoop(), 3.0);
+  const std::vector<Pose2> truth = Walk(1.3);
+  KeyframeSlam slam;
+  Pose2 odometry = truth.front();
+  double odometry_error_m = 0.0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    if (i > 0) {
+      Pose2 motion = geometry::Between(truth[i - 1], truth[i]);
+      motion.theta_rad += 0.0006;  // 0.34 deg per metre: 11 deg per lap
+      odometry = geometry::Compose(odometry, motion);
+    }
+    odometry_error_m = Distance(odometry, truth[i]);
+    slam.Add(Scan(raycaster, truth[i], 0.1 * static_cast<double>(i)), odometry);
+  }
+  slam.Finish();
+  const geometry::Trajectory corrected = slam.Trajectory();
+  ASSERT_EQ(corrected.size(), truth.size());
+  EXPECT_GT(odometry_error_m, 1.0);
+  EXPECT_GE(slam.counts().loop_closures, 1);
+  double worst_m = 0.0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    worst_m = std::max(worst_m, Distance(corrected[i].pose, truth[i]));
+  }
+  EXPECT_LT(Distance(corrected.back().pose, truth.back()), 0.15);
+  EXPECT_LT(worst_m, 0.5);
+}
+
+TEST(KeyframeSlam, KeepsTheOdometryWhenNothingIsRevisited) {
+  const sim::LaserRaycaster raycaster(CorridorLoop(), 3.0);
+  const std::vector<Pose2> truth = Walk(0.5);
+  KeyframeSlam slam;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const Pose2 corrected = slam.Add(Scan(raycaster, truth[i], 0.1 * static_cast<double>(i)),
+                                     truth[i]);
+    EXPECT_LT(Distance(corrected, truth[i]), 1e-6);
+  }
+  EXPECT_EQ(slam.counts().loop_closures, 0);
+}
+
+TEST(KeyframeSlam, RefusesOptionsNamingTheField) {
+  SlamOptions options;
+  options.keyframe_distance_m = -1.0;
+  try {
+    KeyframeSlam slam(options);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("slam.keyframe_distance_m"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace pena::slam

@@ -1,0 +1,80 @@
+#pragma once
+// Shared between the files of `pena map` (cmd_map.cpp: the passes over the log; cmd_map_slam.cpp:
+// the odometry + SLAM pass; cmd_map_output.cpp: files, picture and summary).
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pena/geometry/trajectory.hpp"
+#include "pena/grid/grid_image.hpp"
+#include "pena/grid/local_grid.hpp"
+#include "pena/grid/occupancy_grid.hpp"
+#include "pena/io/log_source.hpp"
+#include "pena/line_map/line_map.hpp"
+#include "pena/line_map/line_segment.hpp"
+#include "pena/slam/keyframe_slam.hpp"
+
+namespace pena::cli::map {
+
+struct MapArgs {
+  std::string log;
+  std::string trajectory;
+  std::string out;
+  double resolution_m = 0.05;
+  double min_length_m = 0.30;  // shortest segment kept (line extraction's min_length_m)
+  bool online = false;
+  bool slam = true;
+  bool ignore_logged = false;  // run the odometry (+ SLAM) even when the scans carry poses  // without a trajectory and logged poses: odometry + keyframe SLAM
+  bool quiet = false;
+  io::ReadOptions read;
+};
+
+// What the pass over the log produced.
+struct MapRun {
+  explicit MapRun(const grid::GridOptions& options) : grid(options) {}
+  grid::OccupancyGrid grid;
+  std::optional<grid::LocalGrid> local;  // --online: the window that moves with the entity
+  line_map::LineMap map;                 // the merged line map
+  std::string source = "map";            // provenance of its segments: the log's entity id
+  long extractions = 0;
+  std::string pose_source;  // "trajectory", "logged poses", "odometry", "odometry + SLAM"
+  std::optional<slam::SlamCounts> slam;  // when the SLAM pass ran
+  double slam_wall_s = 0.0;
+  long scans = 0;
+  long used = 0;
+  long skipped_no_pose = 0;
+  long refused = 0;  // Insert said no: pose not finite or grid too large
+  double wall_s = 0.0;
+};
+
+// Sizes of the map in bytes: the CSV file, the line map as the services send it (a snapshot in
+// the line-map codec), as the gateway packs it for the radio link, and the grid as a PNG.
+struct MapBytes {
+  std::size_t csv = 0;
+  std::size_t codec = 0;
+  std::size_t packed = 0;
+  std::size_t png = 0;
+};
+
+// The SLAM pass: odometry chain and KeyframeSlam over the whole log. nullopt when the log's
+// scans carry logged poses (they are used as they are). Fills run.slam and run.slam_wall_s.
+std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run);
+
+// DIR/lines.csv, lines.svg, lines.dxf.
+void WriteLines(const std::filesystem::path& out_dir,
+                const std::vector<line_map::LineSegment>& lines);
+// DIR/map.png: the grid in grey levels with the lines over it, scale bar and legend.
+void WriteMapPicture(const std::filesystem::path& path, const grid::GridImage& image,
+                     const std::vector<line_map::LineSegment>& lines);
+// The byte sizes of the written map.
+MapBytes MeasureBytes(const std::filesystem::path& out_dir, const line_map::LineMap& map,
+                      const grid::GridImage& image);
+// The summary on stdout.
+void PrintSummary(const MapRun& run, const grid::GridImage& image,
+                  const std::vector<line_map::LineSegment>& lines, const MapBytes& bytes,
+                  double extract_s, double write_s);
+
+}  // namespace pena::cli::map
