@@ -7,7 +7,9 @@
 #
 # Environment: PENA_BUILD (build tree, default <repo>/build), PENA_DEMO_RATE (5), PENA_DEMO_SEED
 # (1), PENA_DEMO_MISSION (reuse an existing `pena simulate` output instead of simulating),
-# PENA_DDS_DOMAIN (default: the first free of 30..99, locked with /tmp/pena-dds-domain-N.lock).
+# PENA_DDS_DOMAIN (default: the first free of 30..99, locked with /tmp/pena-dds-domain-N.lock),
+# PENA_FUSION_ARGS (extra pena-fusion options, e.g. --no-corrections or --raw-corrections to
+# compare with the filtered corrections).
 # Every process started here is stopped on exit (normal, error, Ctrl-C); nothing is left running.
 set -euo pipefail
 
@@ -70,6 +72,8 @@ cat > "$OUT/fusion.conf" <<CONF
 state_dir: "fusion/state"
 plan: "$MISSION/apriori.csv"
 output_dir: "fusion"
+# Attempt a correction at most every 0.2 wall s per entity (1 s of mission time at rate 5).
+correction_interval_s: 0.2
 dds {
   profiles_files: "$DDS_DIR/pena-loopback.xml"
   profiles_files: "$DDS_DIR/pena-qos.xml"
@@ -78,7 +82,8 @@ dds {
 CONF
 
 echo "== pena-fusion (DDS domain $DOMAIN, loopback only)"
-"$FUSION_BIN" --config "$OUT/fusion.conf" > "$OUT/logs/fusion.log" 2>&1 &
+# shellcheck disable=SC2086  # PENA_FUSION_ARGS is a list of options
+"$FUSION_BIN" --config "$OUT/fusion.conf" ${PENA_FUSION_ARGS:-} > "$OUT/logs/fusion.log" 2>&1 &
 FUSION_PID=$!
 PIDS+=("$FUSION_PID")
 

@@ -1,5 +1,5 @@
-// pena-fusion: what the worker does with the samples its listeners queued. Part of
-// FusionService (fusion_service.hpp).
+// pena-fusion: what the worker does with the samples its listeners queued (reference scans:
+// fusion_corrections.cpp). Part of FusionService (fusion_service.hpp).
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -7,7 +7,6 @@
 
 #include "from_dds.hpp"
 #include "fusion_service.hpp"
-#include "pena/fusion/correction.hpp"
 #include "to_dds.hpp"
 
 namespace pena::services {
@@ -22,10 +21,6 @@ template <class PubSubType>
 std::uint32_t SizeOf(const typename PubSubType::type& sample) {
   PubSubType type;
   return type.getSerializedSizeProvider(const_cast<typename PubSubType::type*>(&sample))();
-}
-
-bool IsIdentity(const geometry::Pose2& pose) {
-  return pose.x_m == 0.0 && pose.y_m == 0.0 && pose.theta_rad == 0.0;
 }
 
 fusion::AnnotationKind FromDds(pena_dds::AnnotationKind kind) {
@@ -84,6 +79,7 @@ void FusionService::Handle(const pena_dds::EntityStatus& sample, const SampleMet
   stats_.Count("received", topics::kStatus.name, entity_id,
                SizeOf<pena_dds::EntityStatusPubSubType>(sample));
   EnsureJoined(entity_id, meta);
+  is_robot_[entity_id] = sample.kind() == pena_dds::ENTITY_ROBOT;
   const fusion::EntityStatus* status = store_->state().entity(entity_id);
   const bool left = status != nullptr && status->lifecycle == fusion::EntityLifecycle::kLeft;
   if (sample.state() == pena_dds::ENTITY_FINISHED || sample.state() == pena_dds::ENTITY_FAILED) {
@@ -119,58 +115,6 @@ void FusionService::Handle(const pena_dds::LineMapSnapshot& sample, const Sample
   Apply(fusion::LocalSnapshot{NowS(), entity_id, std::move(snapshot)});
 }
 
-void FusionService::Handle(const pena_dds::ReferenceScan& sample, const SampleMeta& /*meta*/) {
-  const std::string entity_id = sample.entity_id().to_string();
-  stats_.Count("received", topics::kReferenceScan.name, entity_id,
-               SizeOf<pena_dds::ReferenceScanPubSubType>(sample));
-  if (!options_.corrections) return;
-  CheckSchemaVersion(sample.schema_version(), "ReferenceScan");
-  const std::int64_t now_ns = NowNs();
-  std::int64_t& last = last_correction_ns_[entity_id];
-  if (now_ns - last < static_cast<std::int64_t>(options_.correction_interval_s * 1e9)) return;
-  const fusion::EntityStatus* status = store_->state().entity(entity_id);
-  if (status == nullptr || !status->map_from_entity) return;
-  last = now_ns;
-  const geometry::Pose2 entity_from_body = services::FromDds(sample.world_from_body());
-  const geometry::Pose2 map_from_entity = *status->map_from_entity;
-  const fusion::FusionCorrection result = fusion::ComputeCorrection(
-      entity_id, services::FromDds(sample), entity_from_body, map_from_entity,
-      store_->state().CorrectionMap(entity_id));
-  stats_.Add("correction_attempts");
-  stats_.Add("correction_compute_us", (NowNs() - now_ns) / 1000);
-  if (!result.accepted) {
-    stats_.Add("corrections_rejected");
-    spdlog::debug("{}: no correction at reference {}: {}", entity_id, sample.seq(), result.reason);
-    return;
-  }
-  const geometry::Pose2 corrected = geometry::Compose(result.map_from_entity, entity_from_body);
-  const geometry::Pose2 move =
-      geometry::Between(geometry::Compose(map_from_entity, entity_from_body), corrected);
-  if (std::hypot(move.x_m, move.y_m) < options_.correction_min_m &&
-      std::abs(move.theta_rad) < options_.correction_min_rad) {
-    stats_.Add("corrections_small");
-    return;
-  }
-  spdlog::info("{}: correction at reference {} moves it ({:.3f} m, {:.3f} m, {:.4f} rad), "
-               "score {:.2f}, confidence {:.2f}",
-               entity_id, sample.seq(), move.x_m, move.y_m, move.theta_rad, result.score,
-               result.confidence);
-  if (IsIdentity(map_from_entity)) {
-    // The entity corrects its own frame, so its later walls arrive corrected: the fusion keeps
-    // map_from_entity = I (docs/fusion.md, "Contract with the entity").
-    pipeline::Correction correction;
-    correction.kind = pipeline::Correction::Kind::kPose;
-    correction.stamp_s = sample.stamp_s();
-    correction.world_from_body = corrected;
-    correction.confidence = result.confidence;
-    SendCorrection(entity_id, correction, sample.seq());
-  } else {
-    // A placed entity keeps its own frame: the fusion moves its walls instead (journaled).
-    Apply(fusion::AlignmentCorrection{NowS(), entity_id, result.map_from_entity,
-                                      result.confidence});
-  }
-}
-
 void FusionService::Handle(const pena_dds::OperatorCorrection& sample, const SampleMeta& meta) {
   if (FromSelf(meta)) return;
   CheckSchemaVersion(sample.schema_version(), "OperatorCorrection");
@@ -189,6 +133,7 @@ void FusionService::Handle(const pena_dds::OperatorCorrection& sample, const Sam
   correction.world_from_body = services::FromDds(sample.world_from_body());
   correction.confidence = 1.0;
   SendCorrection(entity_id, correction, 0);
+  map_from_odom_sent_.erase(entity_id);  // the entity's frame is the operator's now
   spdlog::info("operator {} set {}'s pose at {:.3f} s; relayed as a correction",
                sample.operator_id().to_string(), entity_id, sample.stamp_s());
 }

@@ -70,6 +70,8 @@ void ValidateFusionServiceOptions(const FusionServiceOptions& options) {
   Require(options.plan.empty() || std::filesystem::exists(options.plan),
           "plan: no such file " + options.plan.string());
   fusion::ValidateFusionOptions(options.store.fusion);
+  fusion::ValidateCorrectionFilterOptions(options.human_filter);
+  fusion::ValidateCorrectionFilterOptions(options.robot_filter);
 }
 
 }  // namespace pena::services

@@ -18,6 +18,7 @@
 #include "dds_participant.hpp"
 #include "fusion_options.hpp"
 #include "fusion_stats.hpp"
+#include "pena/fusion/correction_filter.hpp"
 #include "pena/fusion/fusion_store.hpp"
 #include "pena/pipeline/entity_pipeline.hpp"
 #include "pena_dds/correctionPubSubTypes.h"
@@ -78,6 +79,17 @@ class FusionService {
   void Handle(const pena_dds::Annotation& sample, const SampleMeta& meta);
   void Handle(const pena_dds::SyncRequest& sample, const SampleMeta& meta);
   void Handle(const LivelinessChange& change, const SampleMeta& meta);
+  // Matches a reference scan against the global map and sends the (filtered) correction.
+  void Correct(const std::string& entity_id, const pena_dds::ReferenceScan& sample);
+  // The scan's body pose in the entity's frame with the last correction sent applied.
+  geometry::Pose2 ExpectedPose(const std::string& entity_id,
+                               const pena_dds::ReferenceScan& sample) const;
+  // Sends the corrected pose to the entity, or moves a placed entity's alignment.
+  void Deliver(const std::string& entity_id, const pena_dds::ReferenceScan& sample,
+               const geometry::Pose2& map_from_entity, const geometry::Pose2& corrected,
+               double confidence);
+  // The entity's correction filter (created with its kind's options on first use).
+  fusion::CorrectionFilter& FilterOf(const std::string& entity_id);
 
   // Feeds one input to the store and acts on its output.
   fusion::FusionOutput Apply(const fusion::FusionInput& input);
@@ -103,6 +115,9 @@ class FusionService {
   std::map<std::string, std::int64_t> last_correction_ns_;
   std::map<std::string, std::int64_t> last_sync_request_ns_;
   std::map<std::string, std::uint64_t> correction_seq_;
+  std::map<std::string, bool> is_robot_;  // from the entities' status
+  std::map<std::string, fusion::CorrectionFilter> correction_filters_;
+  std::map<std::string, geometry::Pose2> map_from_odom_sent_;  // what the last correction set
   std::map<std::string, std::int64_t> annotation_ids_;  // DDS annotation_id -> fusion id
   bool snapshot_dirty_ = true;
   std::int64_t next_snapshot_ns_ = 0;

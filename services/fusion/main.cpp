@@ -25,6 +25,8 @@ struct Overrides {
   std::vector<std::string> profiles_files;
   std::optional<int> domain_id;
   bool no_corrections = false;
+  bool raw_corrections = false;
+  std::optional<double> correction_interval_s;
 };
 
 void AddOptions(CLI::App& app, Overrides& o) {
@@ -33,6 +35,10 @@ void AddOptions(CLI::App& app, Overrides& o) {
   app.add_option("--plan", o.plan, "A priori plan (line CSV, SVG or DXF)");
   app.add_option("--out", o.output_dir, "Output directory: global_map.csv, fusion_stats.json");
   app.add_flag("--no-corrections", o.no_corrections, "Do not send corrections");
+  app.add_flag("--raw-corrections", o.raw_corrections,
+               "Send the raw match instead of blending it with the entity's uncertainty");
+  app.add_option("--correction-interval", o.correction_interval_s,
+                 "Wall seconds between correction attempts per entity");
   app.add_option("--domain", o.domain_id, "DDS domain id (0..232)");
   app.add_option("--profile", o.participant_profile, "Participant profile (default pena_loopback)");
   app.add_option("--profiles-file", o.profiles_files, "DDS XML profile file (repeatable)");
@@ -49,6 +55,8 @@ FusionServiceOptions BuildOptions(const Overrides& o) {
   if (!o.plan.empty()) options.plan = o.plan;
   if (!o.output_dir.empty()) options.output_dir = o.output_dir;
   if (o.no_corrections) options.corrections = false;
+  if (o.raw_corrections) options.filter_corrections = false;
+  if (o.correction_interval_s) options.correction_interval_s = *o.correction_interval_s;
   if (o.domain_id) options.dds.domain_id = *o.domain_id;
   if (!o.participant_profile.empty()) options.dds.participant_profile = o.participant_profile;
   if (!o.profiles_files.empty()) {

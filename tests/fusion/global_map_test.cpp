@@ -123,6 +123,33 @@ TEST(GlobalMap, WithholdsALoneDottedWallUntilAnotherEntityCorroboratesIt) {
   EXPECT_EQ(team.fusion.GlobalSnapshot().segments.size(), 2u);
 }
 
+TEST(GlobalMap, LeavesOutALoneDriftedCopyOfACorroboratedWall) {
+  TwoEntities team;
+  // Both see y = 2 (x 0..14 in the map); ff1 also saw it 0.4 m off from a drifted pose, and a
+  // real wall 2 m away that nobody else saw.
+  team.fusion.Handle(LocalDelta{
+      1.0, "ff1",
+      team.ff1_map.Integrate({Wall(0, 2, 8, 2), Wall(1, 2.4, 7, 2.4), Wall(0, 4, 8, 4)}, "ff1")});
+  team.fusion.Handle(LocalDelta{2.0, "ff2", team.ff2_map.Integrate({Wall(-5, 2, 4, 2)}, "ff2")});
+  const line_map::MapSnapshot global = team.fusion.GlobalSnapshot();
+  ASSERT_EQ(global.segments.size(), 2u);
+  for (const line_map::LineSegment& wall : global.segments) {
+    EXPECT_GT(std::abs(wall.segment.start_m.y() - 2.4), 0.1) << "the drifted copy is out";
+  }
+  // With the rule off the copy is published.
+  FusionOptions options;
+  options.global.lone_duplicate_distance_m = 0.0;
+  FusionState off(options);
+  off.Handle(EntityJoin{0.0, "ff1", geometry::Pose2{}});
+  off.Handle(EntityJoin{0.0, "ff2", team.ff2_start});
+  line_map::LineMap ff1_again, ff2_again;
+  off.Handle(LocalDelta{
+      1.0, "ff1",
+      ff1_again.Integrate({Wall(0, 2, 8, 2), Wall(1, 2.4, 7, 2.4), Wall(0, 4, 8, 4)}, "ff1")});
+  off.Handle(LocalDelta{2.0, "ff2", ff2_again.Integrate({Wall(-5, 2, 4, 2)}, "ff2")});
+  EXPECT_EQ(off.GlobalSnapshot().segments.size(), 3u);
+}
+
 TEST(GlobalMap, LaysThePlanUnderTheObservationsAndKeepsItsUnseenParts) {
   FusionState fusion;
   // Plan: a wall y = 0 (right) and a wall y = 5 that is really at y = 5.4 (shifted 0.4 m).

@@ -14,7 +14,9 @@
 #include "dds_endpoints.hpp"
 #include "from_dds.hpp"
 #include "pena/eval/line_map_error.hpp"
+#include "pena/eval/trajectory_error.hpp"
 #include "pena/io/line_csv.hpp"
+#include "pena/io/trajectory_io.hpp"
 #include "pena/line_map/line_map.hpp"
 #include "pena/sim/mission_writer.hpp"
 #include "pena/sim/scenario.hpp"
@@ -56,6 +58,8 @@ pid_t SpawnFusion(int domain, const fs::path& run, bool corrections) {
                                 (TeamMission() / "apriori.csv").string(), "--out",
                                 (run / "fusion").string()};
   if (!corrections) args.push_back("--no-corrections");
+  // As the demo: a correction attempt per entity at most every 0.2 wall s (1.2 mission s).
+  if (corrections) args.insert(args.end(), {"--correction-interval", "0.2"});
   for (const std::string& arg : DdsArgs(domain)) args.push_back(arg);
   return testing::Spawn(args, run / "fusion.log");
 }
@@ -185,13 +189,29 @@ TEST(FusionProcess, TeamGlobalMapCoversObservedWallsAndLateJoinerGetsItWithinTwo
               "%.2f segments per wall; late joiner %.3f s\n",
               score.map_segments, 100 * score.coverage, 100 * score.precision,
               score.fragmentation, late_s);
-  // Issue 6 asks for coverage >= 90 % and precision >= 95 %. The demo reaches 88-96 % coverage
-  // (it depends on when corrections land, so on machine load) and about 50 % precision, because
-  // the firefighters' odometry drifts 0.7-0.8 m before corrections land (docs/demo.md). Until that
-  // is fixed these are regression floors, not the targets: the issue stays open on them.
-  EXPECT_GE(score.coverage, 0.80);
-  EXPECT_GE(score.precision, 0.40);
+  // Issue 6 asks for coverage >= 90 %, precision >= 95 % and <= 1.5 segments per wall. With
+  // filtered corrections and lone drifted copies left out the demo reaches 95-97 % coverage,
+  // 80-82 % precision and 1.06 segments per wall (timing dependent: when corrections land
+  // depends on machine load; docs/demo.md). Coverage and fragmentation are the issue's targets;
+  // precision is a regression floor below what was measured, not the target: the issue stays
+  // open on it (what is left: walls a firefighter alone saw while 0.2-3 m off, docs/demo.md).
+  EXPECT_GE(score.coverage, 0.90);
+  EXPECT_GE(score.precision, 0.70);
   EXPECT_LE(score.fragmentation, 1.5);
+  // Corrections never make an entity worse than its own odometry (the robot's is already good).
+  for (const char* id : {"ff1", "ff2", "ff3", "robot1"}) {
+    const auto truth = io::ReadTum(TeamMission() / id / "truth.tum");
+    const double with_m =
+        eval::EvaluateAgainstTruth(io::ReadTum(run / id / "trajectory.tum"), truth)
+            .translation_rmse_m;
+    const double without_m =
+        eval::EvaluateAgainstTruth(
+            io::ReadTum(run / "fusion" / "poses" / (std::string(id) + "_odom.tum")), truth)
+            .translation_rmse_m;
+    std::printf("[ figures  ] %s RMS position error %.3f m with corrections, %.3f m without\n", id,
+                with_m, without_m);
+    EXPECT_LE(with_m, without_m + 0.01) << id;
+  }
 }
 
 TEST(FusionProcess, KillNineAndRestartEndsWithTheSameMapAndContiguousVersions) {

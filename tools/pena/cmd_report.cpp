@@ -4,6 +4,7 @@
 // the poses it received), and writes global_map.{csv,svg,png}, report.md and report.json.
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -14,6 +15,7 @@
 
 #include "cli_support.hpp"
 #include "commands.hpp"
+#include "report_breakdown.hpp"
 #include "pena/eval/line_map_error.hpp"
 #include "pena/eval/trajectory_error.hpp"
 #include "pena/io/input_error.hpp"
@@ -39,11 +41,6 @@ struct EntityReport {
   double duration_s = 0.0;  // mission seconds of its truth
 };
 
-struct MapScore {
-  std::string name;
-  eval::LineMapErrorSummary summary;
-};
-
 // One row of a CSV file split at commas (the files here hold no quoted commas).
 std::vector<std::vector<std::string>> ReadCsvRows(const fs::path& path) {
   std::ifstream in(path);
@@ -63,16 +60,6 @@ std::vector<geometry::Segment2> Segments(const std::vector<io::LineRow>& rows) {
   std::vector<geometry::Segment2> out;
   for (const io::LineRow& row : rows) out.push_back(row.segment);
   return out;
-}
-
-// A global-map row is observed if some provenance key (last extra column) is not "plan:...".
-bool Observed(const io::LineRow& row) {
-  const std::string provenance = row.extra.substr(row.extra.rfind(',') + 1);
-  std::stringstream keys(provenance);
-  for (std::string key; keys >> key;) {
-    if (key.rfind("plan:", 0) != 0) return true;
-  }
-  return false;
 }
 
 std::optional<eval::TrajectoryErrorSummary> Score(const geometry::Trajectory& estimate,
@@ -193,7 +180,7 @@ std::string Cell(const std::optional<eval::TrajectoryErrorSummary>& s) {
 }
 
 void WriteReports(const ReportArgs& args, const std::vector<EntityReport>& entities,
-                  const std::vector<MapScore>& maps) {
+                  const std::vector<MapScore>& maps, const std::vector<MapScore>& breakdown) {
   const fs::path out(args.out);
   const fs::path fusion = fs::path(args.run) / "fusion";
   const auto traffic = ReadCsvRows(fusion / "traffic.csv");
@@ -226,6 +213,7 @@ void WriteReports(const ReportArgs& args, const std::vector<EntityReport>& entit
          << ", \"precision\": " << Fixed(s.precision, 4)
          << ", \"fragmentation\": " << Fixed(s.fragmentation, 3) << "}";
   }
+  md << BreakdownTable(breakdown, maps[0].summary.map_length_m - maps[0].summary.precise_length_m);
   md << "\n## Bytes per topic and entity (as counted by pena-fusion: serialised CDR payload)\n\n"
         "| direction | topic | entity | samples | bytes | bytes/s (mission) |\n"
         "|---|---|---|---|---|---|\n";
@@ -271,7 +259,7 @@ void RunReport(const ReportArgs& args) {
   Layers layers;
   layers.plan = Segments(io::ReadLineCsv(mission / "apriori.csv"));
   for (const io::LineRow& row : global) {
-    (Observed(row) ? layers.observed : layers.plan_only).push_back(row.segment);
+    (ObservedRow(row) ? layers.observed : layers.plan_only).push_back(row.segment);
   }
   const auto observed_walls = Segments(io::ReadLineCsv(mission / "observed.csv"));
   std::vector<geometry::Segment2> all = layers.observed;
@@ -294,7 +282,13 @@ void RunReport(const ReportArgs& args) {
   io::WriteLineCsv(out / "global_map.csv", global,
                    ",observations,support_cells,rms_error_m,provenance");
   WritePictures(out, layers, entities);
-  WriteReports(args, entities, maps);
+  const std::vector<MapScore> breakdown = ProvenanceBreakdown(global, observed_walls);
+  WriteReports(args, entities, maps, breakdown);
+  for (const MapScore& m : breakdown) {
+    std::printf("  %-40s %3zu segments, %6.1f m, imprecise %5.1f m (precision %.1f%%)\n",
+                m.name.c_str(), m.summary.map_segments, m.summary.map_length_m,
+                std::max(0.0, m.summary.map_length_m - m.summary.precise_length_m), 100 * m.summary.precision);
+  }
   std::printf("global map: %zu segments (%zu observed); coverage %.1f%%, precision %.1f%%, "
               "%.2f segments per wall\n",
               global.size(), layers.observed.size(), 100 * maps[0].summary.coverage,

@@ -60,6 +60,8 @@ FusionCorrection ComputeCorrection(const std::string& entity_id, const sensors::
   correction.entity_id = entity_id;
   correction.map_from_entity = map_from_entity;
   const geometry::Pose2 map_from_body = geometry::Compose(map_from_entity, entity_from_body);
+  correction.predicted_map_from_body = map_from_body;
+  correction.matched_map_from_body = map_from_body;
   const scan_matching::Points2 real = RealPoints(scan, options);
   const scan_matching::Points2 reference = VirtualPoints(scan, map_from_body, map, options);
   correction.points = static_cast<int>(real.size());
@@ -76,6 +78,7 @@ FusionCorrection ComputeCorrection(const std::string& entity_id, const sensors::
       matcher.MatchBranchAndBound(real, geometry::Pose2{}, options.window);
   correction.score = match.score;
   correction.hits = match.hits;
+  correction.information = match.information;
   if (!match.converged || match.score < options.min_score || match.hits < options.min_hits) {
     correction.reason = "weak match: score " + std::to_string(match.score) + ", " +
                         std::to_string(match.hits) + " hits";
@@ -83,6 +86,7 @@ FusionCorrection ComputeCorrection(const std::string& entity_id, const sensors::
   }
   const geometry::Pose2 corrected_map_from_body =
       geometry::Compose(map_from_body, match.reference_from_scan);
+  correction.matched_map_from_body = corrected_map_from_body;
   correction.map_from_entity =
       geometry::Compose(corrected_map_from_body, geometry::Inverse(entity_from_body));
   correction.accepted = true;

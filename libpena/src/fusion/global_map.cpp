@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 #include <unordered_map>
@@ -81,6 +82,62 @@ bool LoneAndWeak(const LineSegment& segment, const GlobalMapOptions& options) {
                      options.min_lone_support_per_m * geometry::Length(segment.segment);
 }
 
+// The entity sources ("ff1") of a segment's provenance, and whether the plan is among them.
+std::pair<std::set<std::string>, bool> SourcesOf(const LineSegment& segment) {
+  std::set<std::string> entities;
+  bool plan = false;
+  for (const std::string& key : segment.provenance) {
+    const std::string source = key.substr(0, key.rfind(':'));
+    if (source == "plan") {
+      plan = true;
+    } else {
+      entities.insert(source);
+    }
+  }
+  return {entities, plan};
+}
+
+// True if `lone` lies along `wall`: parallel, its midpoint within `distance_m` of the wall's
+// line, and at least half of it overlapping the wall.
+bool Shadowed(const geometry::Segment2& lone, const geometry::Segment2& wall, double angle_rad,
+              double distance_m) {
+  const Eigen::Vector2d u = lone.end_m - lone.start_m;
+  const Eigen::Vector2d v = wall.end_m - wall.start_m;
+  const double lone_m = u.norm();
+  const double wall_m = v.norm();
+  if (lone_m <= 0.0 || wall_m <= 0.0) return false;
+  const Eigen::Vector2d along = v / wall_m;
+  if (std::abs(along.x() * u.y() - along.y() * u.x()) / lone_m > std::sin(angle_rad)) return false;
+  const Eigen::Vector2d mid = 0.5 * (lone.start_m + lone.end_m) - wall.start_m;
+  if (std::abs(along.x() * mid.y() - along.y() * mid.x()) > distance_m) return false;
+  const double t1 = (lone.start_m - wall.start_m).dot(along);
+  const double t2 = (lone.end_m - wall.start_m).dot(along);
+  const double overlap_m = std::min(wall_m, std::max(t1, t2)) - std::max(0.0, std::min(t1, t2));
+  return overlap_m >= 0.5 * lone_m;
+}
+
+// Drops walls a single entity saw that duplicate a corroborated wall (lone_duplicate_distance_m).
+void DropLoneDuplicates(std::vector<LineSegment>& fresh, const GlobalMapOptions& options) {
+  if (options.lone_duplicate_distance_m <= 0.0) return;
+  std::vector<const geometry::Segment2*> corroborated;
+  std::vector<bool> lone(fresh.size(), false);
+  for (std::size_t i = 0; i < fresh.size(); ++i) {
+    const auto [entities, plan] = SourcesOf(fresh[i]);
+    if (entities.size() >= 2 || (plan && !entities.empty())) corroborated.push_back(&fresh[i].segment);
+    lone[i] = entities.size() == 1 && !plan;
+  }
+  std::vector<LineSegment> kept;
+  for (std::size_t i = 0; i < fresh.size(); ++i) {
+    const bool duplicate =
+        lone[i] && std::any_of(corroborated.begin(), corroborated.end(), [&](const auto* wall) {
+          return Shadowed(fresh[i].segment, *wall, options.merge.merge_angle_rad,
+                          options.lone_duplicate_distance_m);
+        });
+    if (!duplicate) kept.push_back(std::move(fresh[i]));
+  }
+  fresh = std::move(kept);
+}
+
 }  // namespace
 
 std::string ProvenanceKey(const std::string& source, std::int64_t segment_id) {
@@ -93,6 +150,8 @@ GlobalMap::GlobalMap(GlobalMapOptions options) : options_(options), published_(o
                                 std::to_string(options_.min_lone_support_per_m));
   }
   for (const auto& [name, value] : {std::pair{"plan_shadow_m", options_.plan_shadow_m},
+                                    std::pair{"lone_duplicate_distance_m",
+                                              options_.lone_duplicate_distance_m},
                                     std::pair{"min_plan_piece_m", options_.min_plan_piece_m}}) {
     if (!std::isfinite(value) || value < 0.0) {
       throw std::invalid_argument(std::string("global_map.") + name + " must be >= 0 (metres), got " +
@@ -129,6 +188,7 @@ line_map::MapDelta GlobalMap::Rebuild(const std::vector<MergeSource>& sources) {
     }
   }
   std::erase_if(fresh, [this](const LineSegment& segment) { return LoneAndWeak(segment, options_); });
+  DropLoneDuplicates(fresh, options_);
   fresh.insert(fresh.end(), plan_pieces.begin(), plan_pieces.end());
   const std::vector<LineSegment> old = published_.segments();
   const std::vector<std::int64_t> ids = MatchIds(fresh, old);

@@ -4,6 +4,7 @@
 // (localisation::VirtualScanner) at the pose the current alignment predicts. A good match gives a
 // new map_from_entity; a poor one leaves the alignment alone (failure is data).
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,11 @@ struct FusionCorrection {
   int hits = 0;
   int points = 0;
   std::string reason;                // why not accepted
+  geometry::Pose2 predicted_map_from_body;  // where the alignment put the body (map frame)
+  geometry::Pose2 matched_map_from_body;    // where the match puts it (map frame)
+  // J^T J of the match's point-to-line residuals (x_m, y_m, theta_rad) in the predicted body
+  // frame: CorrectionFilter turns it into the measurement covariance.
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
 };
 
 // Matches `scan` (laser at the body origin, taken at entity_from_body) against the virtual scan of

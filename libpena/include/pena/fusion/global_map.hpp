@@ -29,6 +29,13 @@ struct GlobalMapOptions {
   // door by one person (~5 cells/m) stay out until someone corroborates them; a solid wall on a
   // 5 cm grid has 14-20 cells/m per extraction. Cells per metre, >= 0 (0 = publish everything).
   double min_lone_support_per_m = 10.0;
+  // A wall only one entity saw that runs parallel (within merge.merge_angle_rad) to a wall
+  // several sources corroborate (two entities, or an entity and the plan), at most this far
+  // from its line and overlapping it along at least half its own length, is that wall seen
+  // from a drifted pose (beyond the merge distance): it is not published (it stays in the
+  // entity's local map). Metres, >= 0 (0 = publish them). Two real parallel walls closer than
+  // this, one of them seen by a single entity, would lose that one: corridors are wider.
+  double lone_duplicate_distance_m = 0.8;
   // An observed wall parallel to a plan wall and at most this far from it replaces the plan
   // there (the plan is partly wrong: shifted walls). Metres, >= 0.
   double plan_shadow_m = 0.6;

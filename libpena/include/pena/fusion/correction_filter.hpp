@@ -1,0 +1,99 @@
+#pragma once
+// Kalman-style gating of the fusion's virtual-scan corrections (paper section 4.2, issue 6). The
+// fusion keeps, per entity, the uncertainty of the entity's pose in the map frame: it grows with
+// the distance the entity's own odometry travelled and shrinks at each accepted correction. A
+// match (ComputeCorrection) becomes a measurement whose covariance comes from the matcher's
+// information matrix J^T J; along a direction J^T J hardly constrains (a corridor's axis) the
+// measurement says nothing, so the entity is never moved along it. The measurement is blended
+// with the prediction (gain P (P + R)^-1) instead of replacing it, and an innovation beyond the
+// Mahalanobis gate (an aliased junction, a wrong map) is refused.
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+
+#include "pena/fusion/correction.hpp"
+#include "pena/geometry/pose2.hpp"
+#include "pena/scan_matching/correlation_scan_matcher.hpp"
+
+namespace pena::fusion {
+
+// Options of CorrectionFilter; validated by its constructor (messages name field and unit).
+struct CorrectionFilterOptions {
+  // Odometry drift: position variance grows by (this)^2 per metre travelled. m / sqrt(m).
+  double translation_noise_m_per_sqrt_m = 0.08;
+  // Heading variance grows by (this)^2 per metre travelled. rad / sqrt(m).
+  double heading_noise_rad_per_sqrt_m = 0.006;
+  // ... and by (this)^2 per radian turned. rad / sqrt(rad).
+  double turn_noise_rad_per_sqrt_rad = 0.03;
+  double initial_sd_m = 0.05;       // at the known start, metres
+  double initial_sd_rad = 0.01;     // radians
+  double max_sd_m = 5.0;            // the growth stops here, metres
+  double max_sd_rad = 0.35;         // radians
+  // Point-to-line residual of a good match: R = residual_sd_m^2 (J^T J)^-1. Metres.
+  double residual_sd_m = 0.05;
+  // Added to every measurement: the global map's own wall error. Metres, radians.
+  double map_sd_m = 0.10;
+  double map_sd_rad = 0.015;
+  // A prediction more precise than this (position sd, metres) is not updated: the map, whose
+  // walls are off by map_sd_m in places (shifted plan walls, drifted entities) in a correlated
+  // way, would only pull it towards its own errors. Keeps a robot with good odometry as it is.
+  double min_update_sd_m = 0.05;
+  // Translation eigenvalue ratio (min / max) of J^T J below which the weak axis is dropped.
+  double degenerate_eigen_ratio = 0.05;
+  // Squared Mahalanobis distance of the innovation above which a match is refused (chi^2, 3 dof:
+  // 16.3 is 99.9 %).
+  double gate_mahalanobis_sq = 16.3;
+  // A refused match (weak, or outside the gate) multiplies the position and heading variances by
+  // this: the odometry may have jumped (a failed scan match), so the next window is wider and
+  // the gate looser, as MapLocaliser grows its window after failed rounds. Unitless, >= 1.
+  double refused_growth = 1.5;
+  // The match window covers +- this many standard deviations of the prediction ...
+  double window_sigmas = 3.0;
+  // ... but at least this (full extents), metres / radians, and at most the options' window.
+  double min_window_m = 0.3;
+  double min_window_rad = 0.07;
+};
+
+// Throws std::invalid_argument naming the field and unit.
+void ValidateCorrectionFilterOptions(const CorrectionFilterOptions& options);
+
+// The outcome of CorrectionFilter::Update.
+struct FilteredCorrection {
+  bool accepted = false;
+  geometry::Pose2 map_from_body;  // blended pose (the prediction when not accepted), map frame
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // after the update (x, y, theta)
+  double mahalanobis_sq = 0.0;    // of the innovation
+  double constraint_ratio = 0.0;  // min / max translation eigenvalue of the match's J^T J
+  bool degenerate = false;        // the weak axis was dropped
+  std::string reason;             // why not accepted
+};
+
+// One entity's pose uncertainty and the blending of corrections into it. Not thread-safe.
+class CorrectionFilter {
+ public:
+  explicit CorrectionFilter(const CorrectionFilterOptions& options);
+
+  // Grows the uncertainty by the odometry's motion since the previous call (odom frame).
+  void Predict(const geometry::Pose2& odom_from_body);
+  // The match window for the next correction: +- window_sigmas of the prediction, clamped
+  // between the minimum and `max_window` (steps kept from max_window).
+  scan_matching::SearchWindow Window(const scan_matching::SearchWindow& max_window) const;
+  // Blends an accepted match (ComputeCorrection's result for the pose `predicted`, map frame)
+  // into the prediction. A refused match grows the uncertainty by refused_growth (except when
+  // the prediction is already more precise than the map).
+  FilteredCorrection Update(const geometry::Pose2& predicted, const FusionCorrection& match);
+
+  // Current covariance of the entity's pose in the map frame (x_m, y_m, theta_rad).
+  const Eigen::Matrix3d& covariance() const { return covariance_; }
+
+ private:
+  // Multiplies the covariance (capped at max_sd_m / max_sd_rad).
+  void Grow(double factor);
+
+  CorrectionFilterOptions options_;
+  Eigen::Matrix3d covariance_;
+  std::optional<geometry::Pose2> last_odom_;
+};
+
+}  // namespace pena::fusion
