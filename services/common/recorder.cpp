@@ -55,8 +55,25 @@ void Recorder::Csv(const std::string& stream, const std::string& header,
   out << line << '\n';
 }
 
+void Recorder::OpenSensorLog(const io::MissionLogHeader& header) {
+  sensor_log_ = std::make_unique<io::MissionLogWriter>(directory_ / "sensors.penalog", header);
+}
+
+void Recorder::Sensor(const sensors::SensorRecord& record) {
+  if (sensor_log_) sensor_log_->Write(record);
+}
+
 void Recorder::Flush() {
   for (auto& [name, file] : files_) file.flush();
+}
+
+void Recorder::Close() {
+  Flush();
+  if (sensor_log_) {
+    sensor_log_->Close();
+    sensor_log_.reset();
+  }
+  files_.clear();
 }
 
 }  // namespace pena::services

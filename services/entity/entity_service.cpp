@@ -7,6 +7,7 @@
 
 #include "pena/io/input_error.hpp"
 #include "pena/io/line_csv.hpp"
+#include "pena/io/mission_log.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/pipeline/start_pose.hpp"
 #include "signals.hpp"
@@ -49,7 +50,23 @@ EntityService::EntityService(EntityServiceOptions options)
                      inbox_.Push(std::move(s));
                    }) {
   ReadAhead();
-  if (options_.record) recorder_.emplace(options_.output_dir / "recording");
+  if (options_.record) StartRecording();
+}
+
+void EntityService::StartRecording() {
+  recorder_.emplace(options_.output_dir / "recording");
+  io::MissionLogHeader header;
+  header.mission = source_->description().mission;
+  header.entity_id = entity_id_;
+  header.kind = kind_;
+  for (const sensors::SensorRecord& record : read_ahead_) {
+    if (const auto* scan = std::get_if<sensors::LaserScan>(&record)) header.laser = scan->geometry;
+  }
+  if (const auto* native = dynamic_cast<const io::MissionLogReader*>(source_.get())) {
+    header.laser_height_m = native->header().laser_height_m;
+  }
+  header.producer = "pena-entity --record (input " + options_.input.string() + ")";
+  recorder_->OpenSensorLog(header);
 }
 
 EntityService::~EntityService() = default;
@@ -137,6 +154,14 @@ void EntityService::DrainInbox(std::int64_t until_ns) {
 
 void EntityService::Feed(const sensors::SensorRecord& record) {
   ++summary_.records;
+  if (recorder_) {
+    try {
+      recorder_->Sensor(record);
+    } catch (const std::invalid_argument& error) {
+      // The native log refuses it (a stamp going back); the chain still gets it.
+      spdlog::warn("{}: record {} not recorded: {}", entity_id_, summary_.records, error.what());
+    }
+  }
   std::optional<pipeline::ScanStep> step = pipeline_->Add(record);
   if (!step) return;
   last_stamp_s_ = step->odometry.stamp_s;
@@ -234,6 +259,7 @@ void EntityService::Finish() {
                  entity_id_, options_.linger_s);
   }
   status_writer_.WaitForAcknowledgments(options_.linger_s);
+  if (recorder_) recorder_->Close();
   WriteOutputs();
 }
 

@@ -62,6 +62,8 @@ class EntityService {
                              pena_dds::GlobalMapSnapshot, pena_dds::SyncRequest>;
 
   void ReadAhead();
+  // --record: the recording directory and its native sensor log (header from the input).
+  void StartRecording();
   void WaitForReaders();
   // Handles queued events, waiting for new ones until `until_ns` (system clock; 0 = no wait).
   void DrainInbox(std::int64_t until_ns);

@@ -7,10 +7,13 @@
 
 #include <chrono>
 #include <map>
+#include <regex>
 
 #include "dds_endpoints.hpp"
 #include "from_dds.hpp"
 #include "pena/io/line_csv.hpp"
+#include "pena/io/log_source.hpp"
+#include "pena/io/mission_log.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/line_map/line_map.hpp"
 #include "pena/sim/mission_writer.hpp"
@@ -156,6 +159,43 @@ TEST(EntityProcess, StopsCleanlyOnSigterm) {
   EXPECT_NE(log.find("stopped by a signal"), std::string::npos) << log;
   EXPECT_TRUE(std::filesystem::exists(out / "trajectory.tum"));
   EXPECT_LT(io::ReadTum(out / "trajectory.tum").size(), TestMission().scans);
+}
+
+// --record: what the entity received from its sensors is a native mission log that `pena info`
+// and the log readers open, record for record the input; what it sent is beside it.
+TEST(EntityProcess, RecordsItsInputAsANativeLogThatPenaInfoReads) {
+  const int domain = testing::TestDomain(30);
+  Listener listener(domain);
+  const std::filesystem::path out = testing::ScratchDir("record");
+  std::vector<std::string> args = EntityArgs(domain, out, 0.0);
+  args.push_back("--record");
+  const pid_t pid = testing::Spawn(args, out / "entity.log");
+  ASSERT_GT(pid, 0);
+  ASSERT_EQ(testing::WaitExit(pid, 90.0), 0) << testing::ReadFile(out / "entity.log");
+  const std::filesystem::path recording = out / "recording" / "sensors.penalog";
+  ASSERT_TRUE(io::IsMissionLog(recording));
+  const pid_t info = testing::Spawn({PENA_CLI_BIN, "info", recording.string()}, out / "info.txt");
+  ASSERT_EQ(testing::WaitExit(info, 30.0), 0) << testing::ReadFile(out / "info.txt");
+  const std::string summary = testing::ReadFile(out / "info.txt");
+  EXPECT_NE(summary.find("pena-log"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("robot1 (robot)"), std::string::npos) << summary;
+  EXPECT_TRUE(std::regex_search(
+      summary, std::regex("laser +" + std::to_string(TestMission().scans) + " ")))
+      << summary;
+  // Record for record the input (same kinds and stamps, in the same order).
+  io::MissionLogReader recorded(recording);
+  std::unique_ptr<io::LogSource> input = io::OpenLog(TestMission().entity_dir / "sensors.penalog");
+  long records = 0;
+  while (auto expected = input->Next()) {
+    const std::optional<sensors::SensorRecord> got = recorded.Next();
+    ASSERT_TRUE(got.has_value()) << "recording ends after " << records << " records";
+    ASSERT_EQ(got->index(), expected->index()) << "record " << records;
+    ASSERT_EQ(sensors::StampOf(*got), sensors::StampOf(*expected)) << "record " << records;
+    ++records;
+  }
+  EXPECT_FALSE(recorded.Next().has_value());
+  EXPECT_EQ(recorded.header().entity_id, "robot1");
+  EXPECT_GT(std::filesystem::file_size(out / "recording" / "sent_line_map_deltas.pbs"), 0u);
 }
 
 TEST(EntityProcess, BadConfigInputOrDdsFailureExitsNonZeroNamingTheCause) {

@@ -1,6 +1,7 @@
 #pragma once
 // Spawning a daemon from a test and waiting for it (posix_spawn; stdout/stderr to files).
 
+#include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
