@@ -48,9 +48,28 @@ void PutMaps(std::ostringstream& json, const std::map<std::string, line_map::Lin
   json << "}";
 }
 
+// A DDS side's maps: those it sends (mirrors of its DDS maps) and those it received.
+std::map<std::string, line_map::LineMap> MapsOf(const DdsDomain& dds) {
+  std::map<std::string, line_map::LineMap> maps = dds.sent_maps();
+  for (const auto& [map_id, map] : dds.record().maps()) maps.try_emplace(map_id, map);
+  return maps;
+}
+
+void PutDdsStats(std::ostringstream& json, const DdsDomainStats& stats) {
+  json << ", \"dds\": {\"samples_read\": " << stats.samples_read
+       << ", \"samples_dropped\": " << stats.samples_dropped
+       << ", \"samples_published\": " << stats.samples_published
+       << ", \"publish_failures\": " << stats.publish_failures
+       << ", \"stale_deltas\": " << stats.stale_deltas
+       << ", \"snapshots_forwarded\": " << stats.snapshots_forwarded
+       << ", \"sync_requests_sent\": " << stats.sync_requests_sent
+       << ", \"sync_requests_answered\": " << stats.sync_requests_answered << "}";
+}
+
 // The summary: this side's maps, what it received, what it sent per class.
 std::string Summary(const RunnerOptions& options, const LinkSession& session,
-                    const InMemoryDomain& domain, const SyntheticTeam* team, double last_change_s) {
+                    const InMemoryDomain& domain, const SyntheticTeam* team, const DdsDomain* dds,
+                    double last_change_s) {
   std::vector<double> ages_s;
   std::size_t alarms = 0;
   double last_pose_at_s = -1.0;
@@ -68,7 +87,7 @@ std::string Summary(const RunnerOptions& options, const LinkSession& session,
   std::ostringstream json;
   json.precision(6);
   json << std::fixed << "{\"name\": \"" << options.name << "\", ";
-  PutMaps(json, team != nullptr ? team->maps() : domain.maps());
+  PutMaps(json, team != nullptr ? team->maps() : dds != nullptr ? MapsOf(*dds) : domain.maps());
   json << ", \"last_map_change_s\": " << last_change_s << ", \"poses_received\": " << ages_s.size()
        << ", \"pose_age_p50_s\": " << Percentile(ages_s, 0.5)
        << ", \"pose_age_p99_s\": " << Percentile(ages_s, 0.99)
@@ -77,7 +96,9 @@ std::string Summary(const RunnerOptions& options, const LinkSession& session,
        << ", \"frames_sent\": " << stats.frames_sent << ", \"wire_bytes_sent\": " << stats.wire_bytes_sent
        << ", \"frames_received\": " << stats.frames_received
        << ", \"frames_rejected\": " << stats.rejected_total() << ", \"resyncs\": " << stats.resyncs
-       << ", \"pending_deltas\": " << session.scheduler().pending_deltas() << ", \"sent\": {";
+       << ", \"pending_deltas\": " << session.scheduler().pending_deltas();
+  if (dds != nullptr) PutDdsStats(json, dds->stats());
+  json << ", \"sent\": {";
   for (std::size_t c = 0; c < kItemClassCount; ++c) {
     json << (c ? ", " : "") << "\"" << ToString(static_cast<ItemClass>(c)) << "\": {\"items\": "
          << stats.sent[c].items << ", \"bytes\": " << stats.sent[c].bytes
@@ -122,8 +143,12 @@ EmulatedLinkOptions Emulation(const RunnerOptions& options, double start_s) {
 // The loop, for either transport (UdpLink or TcpLink: Send, Receive).
 template <typename Transport>
 std::string Run(const RunnerOptions& options, Transport& link, const std::atomic<bool>& stop) {
-  InMemoryDomain domain;
-  LinkSession session(options.link, domain);
+  InMemoryDomain memory;
+  std::unique_ptr<DdsDomain> dds;
+  if (options.dds) dds = std::make_unique<DdsDomain>(options.dds_options);
+  DomainSide& side = dds ? static_cast<DomainSide&>(*dds) : memory;
+  const InMemoryDomain& domain = dds ? dds->record() : memory;
+  LinkSession session(options.link, side);
   const double start_s = WallClockS();
   std::unique_ptr<SyntheticTeam> team = MakeTeam(options, start_s);
   EmulatedLink inbound(Emulation(options, start_s));
@@ -131,12 +156,20 @@ std::string Run(const RunnerOptions& options, Transport& link, const std::atomic
                options.tcp ? "tcp" : "udp", options.udp.bind_address, options.udp.bind_port,
                options.udp.peer_address,
                options.udp.peer_port, options.link.budget_bit_s, session.session());
+  if (dds) {
+    std::string send, publish;
+    for (DdsClass c : options.dds_options.role.send) send += std::string(send.empty() ? "" : ",") + ToString(c);
+    for (DdsClass c : options.dds_options.role.publish) publish += std::string(publish.empty() ? "" : ",") + ToString(c);
+    spdlog::info("{}: DDS domain {} (profile {}), sends [{}], publishes [{}]", options.name,
+                 options.dds_options.dds.domain_id, options.dds_options.dds.participant_profile, send, publish);
+  }
   double last_change_s = 0.0;
   std::uint64_t send_errors = 0;
-  while (!stop && WallClockS() - start_s < options.duration_s) {
+  while (!stop && (options.duration_s <= 0.0 || WallClockS() - start_s < options.duration_s)) {
     for (std::string& frame : link.Receive(0.005)) inbound.Send(std::move(frame), WallClockS());
     const double now_s = WallClockS();
-    domain.set_clock(now_s);
+    if (dds) dds->set_clock(now_s);
+    memory.set_clock(now_s);
     for (const std::string& frame : inbound.Receive(now_s)) {
       const std::size_t before = domain.delivered().size();
       const FrameResult result = session.OnFrame(frame, now_s);
@@ -146,9 +179,10 @@ std::string Run(const RunnerOptions& options, Transport& link, const std::atomic
       }
     }
     if (team) {
-      for (DomainItem& item : team->Advance(now_s)) domain.Offer(std::move(item));
+      for (DomainItem& item : team->Advance(now_s)) memory.Offer(std::move(item));
       last_change_s = std::max(0.0, team->last_map_change_s());
     }
+    if (dds) last_change_s = std::max(last_change_s, dds->last_sent_map_change_s());
     for (const std::string& frame : session.Poll(now_s)) {
       std::string error;
       if (!link.Send(frame, &error) && send_errors++ % 100 == 0) {
@@ -159,7 +193,7 @@ std::string Run(const RunnerOptions& options, Transport& link, const std::atomic
   if constexpr (std::is_same_v<Transport, TcpLink>) {
     spdlog::info("{}: tcp connection lost {} times (last: {})", options.name, link.drops(), link.last_drop());
   }
-  const std::string json = Summary(options, session, domain, team.get(), last_change_s);
+  const std::string json = Summary(options, session, domain, team.get(), dds.get(), last_change_s);
   if (!options.stats_path.empty()) std::ofstream(options.stats_path) << json;
   return json;
 }

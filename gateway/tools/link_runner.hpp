@@ -1,6 +1,6 @@
 #pragma once
-// pena-gateway's event loop: one LinkSession on a UDP socket, a local domain (synthetic team or a
-// receive-only in-memory domain; DDS plugs in through DomainSide), optional delay/loss/outage
+// pena-gateway's event loop: one LinkSession on a UDP socket, a local domain (a DDS domain, a
+// synthetic team or a receive-only in-memory domain), optional delay/loss/outage
 // emulation on the receive path (where the kernel lacks netem), and a JSON summary at the end.
 
 #include <atomic>
@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "pena/gateway/dds_domain.hpp"
 #include "pena/gateway/link_emulator.hpp"
 #include "pena/gateway/link_session.hpp"
 #include "pena/gateway/synthetic_team.hpp"
@@ -25,7 +26,9 @@ struct RunnerOptions {
   LinkOptions link;
   int team_entities = 0;             // > 0: publish a synthetic team of this size
   SyntheticTeamOptions team;
-  double duration_s = 60.0;          // run this long (wall clock), then report
+  bool dds = false;                  // the local domain is a DDS domain (else synthetic/in-memory)
+  DdsDomainOptions dds_options;      // participant, role (send and publish classes)
+  double duration_s = 60.0;          // run this long (wall clock), then report; <= 0: until a signal
   double emulate_delay_s = 0.0;      // added to every received frame
   double emulate_loss = 0.0;         // probability of dropping a received frame
   std::vector<std::pair<double, double>> emulate_outages;  // seconds after start: drop all

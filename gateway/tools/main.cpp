@@ -1,5 +1,6 @@
 // pena-gateway: bridges a local domain across a bandwidth-limited link (docs/gateway.md).
-// Today's domains: a synthetic team (--team N) or receive-only; the DDS domain plugs in later.
+// The local domain is a DDS domain (--dds-domain, --role), a synthetic team (--team N) or
+// receive-only.
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -7,7 +8,10 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <set>
 
+#include "dds_participant.hpp"
 #include "link_runner.hpp"
 
 namespace {
@@ -46,12 +50,79 @@ void AddOptions(CLI::App& app, pena::gateway::RunnerOptions& options, std::strin
   app.add_option("--team", options.team_entities, "publish a synthetic team of N entities (0: receive only)");
   app.add_option("--map-until-s", options.team.map_until_s, "synthetic maps stop changing after this (s)");
   app.add_option("--seed", options.team.seed, "synthetic team seed")->capture_default_str();
-  app.add_option("--duration-s", options.duration_s, "run time (s)")->capture_default_str();
+  app.add_option("--duration-s", options.duration_s, "run time (s); 0: until SIGINT/SIGTERM")->capture_default_str();
   app.add_option("--emulate-delay-s", options.emulate_delay_s, "delay added to received frames (no netem)");
   app.add_option("--emulate-loss", options.emulate_loss, "probability of dropping a received frame");
   app.add_option("--emulate-outage", outages, "START:END seconds after start: drop everything received");
   app.add_option("--stats", options.stats_path, "write the JSON summary here");
   app.add_option("--name", options.name, "name in logs and the summary");
+}
+
+// The DDS command line: domain, profiles, role and its overrides.
+struct DdsFlags {
+  int domain = -1;
+  std::vector<std::string> profiles_files;
+  std::string participant_profile = "pena_loopback";
+  std::string role;
+  std::vector<std::string> send;
+  std::vector<std::string> publish;
+  bool send_given = false;
+  bool publish_given = false;
+};
+
+void AddDdsOptions(CLI::App& app, pena::gateway::RunnerOptions& options, DdsFlags& flags) {
+  app.add_option("--dds-domain", flags.domain, "bridge this DDS domain (0..232); without it: --team or receive-only")
+      ->check(CLI::Range(0, 232));
+  app.add_option("--role", flags.role, "building | command-post | entities | fusion-post (docs/gateway.md)")
+      ->check(CLI::IsMember({"building", "command-post", "entities", "fusion-post"}));
+  app.add_option("--send", flags.send, "classes read from DDS and sent (overrides the role): pose, entity_map, global_map, annotation, correction, none")
+      ->delimiter(',');
+  app.add_option("--publish", flags.publish, "classes received and published into DDS (overrides the role)")
+      ->delimiter(',');
+  app.add_option("--dds-profiles-file", flags.profiles_files,
+                 "Fast DDS XML profile file (repeat; default deploy/dds/pena-loopback.xml and pena-qos.xml)");
+  app.add_option("--dds-participant-profile", flags.participant_profile, "participant profile")->capture_default_str();
+  app.add_option("--snapshot-grace-s", options.dds_options.snapshot_grace_s,
+                 "forward a newer DDS snapshot only if deltas do not reach it within this")->capture_default_str();
+}
+
+std::set<pena::gateway::DdsClass> ParseClasses(const std::vector<std::string>& names, const std::string& option) {
+  std::set<pena::gateway::DdsClass> classes;
+  for (const std::string& name : names) {
+    if (name == "none") continue;
+    const auto parsed = pena::gateway::ParseDdsClass(name);
+    if (!parsed) throw CLI::ValidationError(option, "unknown class '" + name + "'");
+    classes.insert(*parsed);
+  }
+  return classes;
+}
+
+// Fills options.dds_options from the flags; throws CLI::ValidationError naming the option.
+void ApplyDdsFlags(const CLI::App& app, const DdsFlags& flags, pena::gateway::RunnerOptions& options) {
+  const bool any = !flags.role.empty() || app.count("--send") > 0 || app.count("--publish") > 0;
+  if (flags.domain < 0) {
+    if (any) throw CLI::ValidationError("--role/--send/--publish", "need --dds-domain");
+    return;
+  }
+  if (options.team_entities > 0) throw CLI::ValidationError("--team", "cannot be combined with --dds-domain");
+  if (flags.role.empty() && (app.count("--send") == 0 || app.count("--publish") == 0)) {
+    throw CLI::ValidationError("--dds-domain", "needs --role, or both --send and --publish");
+  }
+  options.dds = true;
+  auto& dds = options.dds_options;
+  if (!flags.role.empty()) dds.role = *pena::gateway::ParseDdsRole(flags.role);
+  if (app.count("--send") > 0) dds.role.send = ParseClasses(flags.send, "--send");
+  if (app.count("--publish") > 0) dds.role.publish = ParseClasses(flags.publish, "--publish");
+  dds.dds.domain_id = flags.domain;
+  dds.dds.participant_profile = flags.participant_profile;
+  if (flags.profiles_files.empty()) {
+    dds.dds.profiles_files = pena::services::DefaultProfilesFiles();
+  } else {
+    for (const std::string& file : flags.profiles_files) {
+      dds.dds.profiles_files.push_back(std::filesystem::absolute(file));
+    }
+  }
+  dds.name = "pena-gateway-" + options.name;
 }
 
 }  // namespace
@@ -64,6 +135,8 @@ int main(int argc, char** argv) {
   bool no_compress = false;
   std::vector<std::string> outages;
   AddOptions(app, options, bind, peer, no_compress, outages);
+  DdsFlags dds_flags;
+  AddDdsOptions(app, options, dds_flags);
   try {
     app.parse(argc, argv);
     SplitEndpoint(bind, "--bind", &options.udp.bind_address, &options.udp.bind_port);
@@ -76,6 +149,7 @@ int main(int argc, char** argv) {
       }
       options.emulate_outages.emplace_back(from, to);
     }
+    ApplyDdsFlags(app, dds_flags, options);
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
   }

@@ -1,0 +1,47 @@
+#pragma once
+// DDS samples (idl/dds/*.idl) <-> the gateway's link items (docs/gateway.md, "DDS domain side").
+// The link carries less than the DDS types: what is kept, what is rebuilt on the far side and what
+// is dropped is listed per type below and in the docs. Stamps on the link are wall-clock seconds
+// (the DDS source timestamp), because both gateways share one clock; mission time does not cross.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "pena/gateway/link_items.hpp"
+#include "pena_dds/correction.h"
+#include "pena_dds/entity.h"
+#include "pena_dds/operator.h"
+
+namespace pena::gateway {
+
+// An annotation's link id packs "<author>/<n>", the kind and the retracted flag:
+// id = n << 4 | retracted << 3 | kind (pena_dds::AnnotationKind, 0..6).
+inline constexpr unsigned kAnnotationKindBits = 3;
+inline constexpr std::uint64_t kAnnotationRetractedBit = 1u << kAnnotationKindBits;
+inline constexpr unsigned kAnnotationIdShift = 4;
+
+// An entity's pose: entity and world_from_body; `stamp_s` is the sample's wall-clock source time.
+PoseUpdate PoseFromDds(const pena_dds::EntityPose& sample, double stamp_s);
+// The far side's pose sample: odom_from_body = world_from_body, zero covariance, POSE_MATCHED,
+// stamp_s = the wall-clock stamp (mission time does not cross), `seq` counted by the publisher.
+pena_dds::EntityPose PoseToDds(const PoseUpdate& pose, std::uint64_t seq);
+
+// An annotation whose id is "<author_id>/<n>" (n decimal, < 2^60); kinds VICTIM_FOUND and
+// DANGEROUS_AREA become alarms (sent at once). Radius and outline are not carried. nullopt and
+// `error` naming the field for anything the link cannot represent.
+std::optional<Annotation> AnnotationFromDds(const pena_dds::Annotation& sample, double stamp_s,
+                                            std::string* error);
+// The far side's sample: id "<entity>/<n>", kind and retracted from the link id, stamp_s = the
+// wall-clock stamp. Throws std::length_error naming the field for a name or text too long.
+pena_dds::Annotation AnnotationToDds(const Annotation& annotation);
+
+// A fusion correction of kind CORRECTION_MAP_FROM_ODOM (world_from_local = map_from_odom,
+// version = seq). CORRECTION_POSE needs the mission stamp, which the link does not carry:
+// nullopt and `error`.
+std::optional<Correction> CorrectionFromDds(const pena_dds::Correction& sample, double stamp_s,
+                                            std::string* error);
+// The far side's sample: CORRECTION_MAP_FROM_ODOM, seq = version, confidence 1.
+pena_dds::Correction CorrectionToDds(const Correction& correction);
+
+}  // namespace pena::gateway
