@@ -4,7 +4,8 @@
 
 namespace pena::gateway {
 
-LinkReceiver::LinkReceiver(ReceiverOptions options) : options_(options) {
+LinkReceiver::LinkReceiver(ReceiverOptions options)
+    : options_(options), assembler_(options.max_partial_bytes) {
   if (options_.max_early_deltas == 0) {
     throw std::invalid_argument("receiver.max_early_deltas must be > 0 deltas, got 0");
   }
@@ -12,6 +13,16 @@ LinkReceiver::LinkReceiver(ReceiverOptions options) : options_(options) {
     throw std::invalid_argument("receiver.ack_delay_s must be >= 0 s, got " +
                                 std::to_string(options_.ack_delay_s));
   }
+  if (options_.max_update_bytes == 0 || options_.max_update_bytes > options_.max_partial_bytes) {
+    throw std::invalid_argument("receiver.max_update_bytes must be in [1, max_partial_bytes] bytes, got " +
+                                std::to_string(options_.max_update_bytes));
+  }
+}
+
+std::optional<std::string> LinkReceiver::AcceptFragment(std::uint64_t seq, const link::Fragment& fragment,
+                                                        double now_s) {
+  if (seq != 0 && !FirstTime(seq, now_s)) return std::nullopt;
+  return assembler_.Add(fragment);
 }
 
 bool LinkReceiver::FirstTime(std::uint64_t seq, double now_s) {
@@ -91,6 +102,7 @@ void LinkReceiver::AcceptMap(MapChange change, double now_s, std::vector<DomainI
 void LinkReceiver::OnPeerRestart(double now_s) {
   cumulative_ = 0;
   beyond_.clear();
+  assembler_.Clear();
   OweSummary(now_s);
 }
 

@@ -12,49 +12,91 @@ ClassCounters& Of(std::array<ClassCounters, kItemClassCount>& counters, ItemClas
   return counters[static_cast<std::size_t>(item_class)];
 }
 
-// Adds `item` to the envelope if it keeps within max_bytes; records its bytes in `selection`.
-class EnvelopeFiller {
+}  // namespace
+
+// Adds items to the envelope while it keeps within max_bytes; records their bytes in `selection`.
+class LinkScheduler::Filler {
  public:
-  EnvelopeFiller(link::Envelope* envelope, std::size_t max_bytes, bool oversized_ok,
-                 Selection* selection)
+  Filler(link::Envelope* envelope, std::size_t max_bytes, bool oversized_ok, Selection* selection,
+         std::uint64_t next_seq)
       : envelope_(envelope), max_bytes_(max_bytes), oversized_ok_(oversized_ok),
-        selection_(selection), size_(envelope->ByteSizeLong()) {}
+        selection_(selection), size_(envelope->ByteSizeLong()), next_seq_(next_seq) {}
 
   bool Add(const DomainItem& item, std::uint64_t seq, ItemClass item_class) {
     link::Item encoded;
     encoded.set_seq(seq);
     ToProto(item, envelope_->base_stamp_ms(), &encoded);
-    return AddEncoded(encoded, item_class);
+    return AddEncoded(encoded, item_class, true);
   }
-  bool AddEncoded(const link::Item& encoded, ItemClass item_class) {
+  // Adds `encoded` if it fits; else the envelope is full if `mark_full`. A map update is never
+  // oversized (it goes in pieces instead: a frame must stay within the receiver's limit).
+  bool AddEncoded(const link::Item& encoded, ItemClass item_class, bool mark_full) {
     if (selection_->full) return false;
     *envelope_->add_items() = encoded;
     const std::size_t size = envelope_->ByteSizeLong();
-    if (size > max_bytes_ && !(oversized_ok_ && selection_->size() == 0)) {
+    const bool oversized_ok = oversized_ok_ && selection_->size() == 0 && item_class != ItemClass::kMap;
+    if (size > max_bytes_ && !oversized_ok) {
       envelope_->mutable_items()->RemoveLast();
-      selection_->full = true;
+      if (mark_full) selection_->full = true;
       return false;
     }
+    Count(item_class, size);
+    return true;
+  }
+  // Adds a piece of `update` starting at `offset`, up to max_length bytes and as many as the
+  // room allows (at least min_length unless the piece is shorter). Returns its length, or
+  // nullopt (the envelope is full). A piece shorter than max_length fills the envelope.
+  std::optional<std::uint32_t> AddPiece(const OutgoingUpdate& update, std::uint32_t offset,
+                                        std::uint32_t max_length, std::size_t min_length) {
+    if (selection_->full) return std::nullopt;
+    const std::size_t room = max_bytes_ > size_ ? max_bytes_ - size_ : 0;
+    std::size_t length = std::min<std::size_t>(max_length, room > 24 ? room - 24 : 0);
+    for (int attempt = 0; attempt < 4; ++attempt) {
+      if (length == 0 || (length < min_length && length < max_length)) break;
+      link::Item* item = envelope_->add_items();
+      item->set_seq(next_seq_);
+      link::Fragment* fragment = item->mutable_fragment();
+      fragment->set_group(update.group());
+      fragment->set_total_bytes(static_cast<std::uint32_t>(update.bytes().size()));
+      fragment->set_offset(offset);
+      fragment->set_data(update.bytes().substr(offset, length));
+      const std::size_t size = envelope_->ByteSizeLong();
+      const std::size_t overhead = size - size_ - length;
+      const std::size_t best = std::min<std::size_t>(max_length, room > overhead ? room - overhead : 0);
+      if (size <= max_bytes_ && (best <= length || attempt == 3)) {
+        Count(ItemClass::kMap, size);
+        ++next_seq_;
+        if (length < max_length) selection_->full = true;
+        return static_cast<std::uint32_t>(length);
+      }
+      envelope_->mutable_items()->RemoveLast();
+      length = size > max_bytes_ ? length - std::min(length, size - max_bytes_) : best;
+    }
+    selection_->full = true;
+    return std::nullopt;
+  }
+  std::uint64_t next_seq() const { return next_seq_; }
+
+ private:
+  void Count(ItemClass item_class, std::size_t size) {
     ClassCounters& counters = Of(selection_->counters, item_class);
     ++counters.items;
     counters.bytes += size - size_;
     size_ = size;
-    return true;
   }
 
- private:
   link::Envelope* envelope_;
   std::size_t max_bytes_;
   bool oversized_ok_;
   Selection* selection_;
   std::size_t size_;
+  std::uint64_t next_seq_;
 };
 
-}  // namespace
 
 std::size_t Selection::size() const {
   return annotation_seqs.size() + pose_entities.size() + correction_entities.size() +
-         snapshot_maps.size() + deltas.size();
+         snapshot_maps.size() + deltas.size() + pieces.size();
 }
 
 LinkScheduler::LinkScheduler(SchedulerOptions options) : options_(options) {
@@ -66,6 +108,13 @@ LinkScheduler::LinkScheduler(SchedulerOptions options) : options_(options) {
     throw std::invalid_argument(
         "scheduler.max_retransmit_timeout_s must be >= retransmit_timeout_s s, got " +
         std::to_string(options_.max_retransmit_timeout_s));
+  }
+  if (options_.min_piece_bytes == 0) {
+    throw std::invalid_argument("scheduler.min_piece_bytes must be > 0 bytes, got 0");
+  }
+  if (!(options_.fragment_stall_s > 0.0)) {
+    throw std::invalid_argument("scheduler.fragment_stall_s must be > 0 s, got " +
+                                std::to_string(options_.fragment_stall_s));
   }
 }
 
@@ -94,9 +143,7 @@ void LinkScheduler::OfferMap(MapChange change) {
     // The producer's whole map replaces ours; the peer gets it whole (reset: it is authoritative).
     map.mirror = line_map::LineMap::FromSnapshot(*snapshot, map.mirror.options());
     map.pending.clear();
-    map.snapshot_due = true;
-    map.reset = true;
-    map.snapshot_timer = {};
+    QueueSnapshot(change.map_id, map, true);
     return;
   }
   auto& delta = std::get<line_map::MapDelta>(change.change);
@@ -105,15 +152,54 @@ void LinkScheduler::OfferMap(MapChange change) {
     ++rejected_offers_;
     return;
   }
-  PendingDelta pending{std::move(delta), {}, next_order_++, {}};
-  ToProto(MapChange{change.map_id, pending.delta, false}, 0, &pending.encoded);
-  map.pending.push_back(std::move(pending));
+  link::Item encoded;
+  ToProto(MapChange{change.map_id, delta, false}, 0, &encoded);
+  map.pending.push_back(PendingDelta{delta.from_version, delta.to_version,
+                                     OutgoingUpdate(encoded, next_group_++), next_order_++});
+}
+
+// Freezes the map as it is now into a snapshot; the deltas it covers are dropped.
+void LinkScheduler::QueueSnapshot(const std::string& map_id, OutMap& map, bool reset) {
+  map.reset = reset;
+  map.snapshot_version = map.mirror.version();
+  link::Item encoded;
+  ToProto(MapChange{map_id, map.mirror.Snapshot(), reset}, 0, &encoded);
+  map.snapshot.emplace(encoded, next_group_++);
+  while (!map.pending.empty() && map.pending.front().to_version <= map.snapshot_version) {
+    map.pending.pop_front();
+  }
+}
+
+bool LinkScheduler::AddUpdate(Filler& filler, const OutgoingUpdate& update, PieceRef ref,
+                              double now_s, Selection* selection, bool* whole) const {
+  *whole = false;
+  if (!update.fragmented()) {
+    if (!update.whole_timer().Due(now_s)) return true;
+    if (filler.AddEncoded(update.item(), ItemClass::kMap, false)) {
+      *whole = true;
+      return true;
+    }
+  }
+  for (const OutgoingUpdate::Piece& piece : update.DuePieces(now_s)) {
+    const std::uint64_t seq = filler.next_seq();
+    const std::optional<std::uint32_t> length =
+        filler.AddPiece(update, piece.offset, piece.length, options_.min_piece_bytes);
+    if (!length) break;
+    ref.offset = piece.offset;
+    ref.length = *length;
+    ref.seq = seq;
+    selection->pieces.push_back(ref);
+    if (*length < piece.length) break;
+  }
+  if (!selection->full) return true;
+  selection->map_waiting = true;  // this update (or what follows it) has more to send
+  return false;
 }
 
 Selection LinkScheduler::Fill(link::Envelope* envelope, std::size_t max_bytes, bool oversized_ok,
                               double now_s) {
   Selection selection;
-  EnvelopeFiller filler(envelope, max_bytes, oversized_ok, &selection);
+  Filler filler(envelope, max_bytes, oversized_ok, &selection, next_seq_);
   for (const auto& [seq, pending] : annotations_) {
     if (!pending.timer.Due(now_s)) continue;
     if (!filler.Add(pending.annotation, seq, ItemClass::kAnnotation)) return selection;
@@ -133,26 +219,25 @@ Selection LinkScheduler::Fill(link::Envelope* envelope, std::size_t max_bytes, b
     if (!filler.Add(pending.correction, pending.seq, ItemClass::kCorrection)) return selection;
     selection.correction_entities.push_back(entity);
   }
+  bool whole = false;
   for (const auto& [map_id, map] : maps_) {
-    if (!map.snapshot_due || !map.snapshot_timer.Due(now_s)) continue;
-    if (!filler.Add(MapChange{map_id, map.mirror.Snapshot(), map.reset}, 0, ItemClass::kMap)) {
-      return selection;
-    }
-    selection.snapshot_maps.push_back(map_id);
+    if (!map.snapshot) continue;
+    PieceRef ref{map_id, true, map.snapshot_version, 0, 0, 0};
+    if (!AddUpdate(filler, *map.snapshot, ref, now_s, &selection, &whole)) return selection;
+    if (whole) selection.snapshot_maps.push_back(map_id);
   }
   // Deltas in the order they were offered: per map that is version order.
   std::vector<std::pair<const std::string*, const PendingDelta*>> due;
   for (const auto& [map_id, map] : maps_) {
-    if (map.snapshot_due) continue;  // the snapshot carries them
-    for (const PendingDelta& pending : map.pending) {
-      if (pending.timer.Due(now_s)) due.emplace_back(&map_id, &pending);
-    }
+    if (map.snapshot) continue;  // the deltas after it wait until the peer holds it
+    for (const PendingDelta& pending : map.pending) due.emplace_back(&map_id, &pending);
   }
   std::sort(due.begin(), due.end(),
             [](const auto& a, const auto& b) { return a.second->order < b.second->order; });
   for (const auto& [map_id, pending] : due) {
-    if (!filler.AddEncoded(pending->encoded, ItemClass::kMap)) return selection;
-    selection.deltas.emplace_back(*map_id, pending->delta.to_version);
+    PieceRef ref{*map_id, false, pending->to_version, 0, 0, 0};
+    if (!AddUpdate(filler, pending->update, ref, now_s, &selection, &whole)) return selection;
+    if (whole) selection.deltas.emplace_back(*map_id, pending->to_version);
   }
   return selection;
 }
@@ -165,6 +250,19 @@ void LinkScheduler::Sent(Timer& timer, double now_s, ClassCounters& counters) co
                                                   options_.max_retransmit_timeout_s);
   ++timer.sends;
   timer.last_sent_s = now_s;
+}
+
+OutgoingUpdate* LinkScheduler::Find(const PieceRef& ref) {
+  const auto found = maps_.find(ref.map_id);
+  if (found == maps_.end()) return nullptr;
+  OutMap& map = found->second;
+  if (ref.snapshot) {
+    return map.snapshot && map.snapshot_version == ref.to_version ? &*map.snapshot : nullptr;
+  }
+  for (PendingDelta& pending : map.pending) {
+    if (pending.to_version == ref.to_version) return &pending.update;
+  }
+  return nullptr;
 }
 
 void LinkScheduler::Commit(const Selection& selection, double now_s, LinkStats* stats) {
@@ -181,17 +279,27 @@ void LinkScheduler::Commit(const Selection& selection, double now_s, LinkStats* 
     Sent(corrections_.at(entity).timer, now_s, Of(sent, ItemClass::kCorrection));
   }
   for (const std::string& map_id : selection.snapshot_maps) {
-    OutMap& map = maps_.at(map_id);
-    Sent(map.snapshot_timer, now_s, Of(sent, ItemClass::kMap));
-    // The snapshot holds every change up to its version.
-    map.snapshot_version = map.mirror.version();
-    while (!map.pending.empty() && map.pending.front().delta.to_version <= map.snapshot_version) {
-      map.pending.pop_front();
-    }
+    Sent(maps_.at(map_id).snapshot->whole_timer(), now_s, Of(sent, ItemClass::kMap));
   }
   for (const auto& [map_id, to_version] : selection.deltas) {
     for (PendingDelta& pending : maps_.at(map_id).pending) {
-      if (pending.delta.to_version == to_version) Sent(pending.timer, now_s, Of(sent, ItemClass::kMap));
+      if (pending.to_version == to_version) Sent(pending.update.whole_timer(), now_s, Of(sent, ItemClass::kMap));
+    }
+  }
+  for (const PieceRef& ref : selection.pieces) {
+    next_seq_ = std::max(next_seq_, ref.seq + 1);
+    OutgoingUpdate* update = Find(ref);
+    if (update == nullptr) continue;
+    const Timer before = update->MarkSent(ref.offset, ref.length, ref.seq, now_s,
+                                          options_.retransmit_timeout_s, options_.max_retransmit_timeout_s);
+    if (before.sends > 0) ++Of(sent, ItemClass::kMap).resent;
+  }
+  // Updates whose every piece the peer acknowledged but whose version it never confirmed: it
+  // dropped them (its buffer limit); send them again.
+  for (auto& [map_id, map] : maps_) {
+    if (map.snapshot && map.snapshot->Stalled(now_s, options_.fragment_stall_s)) map.snapshot->Restart(next_group_++);
+    for (PendingDelta& pending : map.pending) {
+      if (pending.update.Stalled(now_s, options_.fragment_stall_s)) pending.update.Restart(next_group_++);
     }
   }
 }
@@ -205,6 +313,10 @@ void LinkScheduler::OnAck(const link::Ack& ack) {
   for (auto& [entity, pending] : corrections_) {
     if (acked(pending.seq)) pending.acked = true;
   }
+  for (auto& [map_id, map] : maps_) {
+    if (map.snapshot) map.snapshot->Ack(ack);
+    for (PendingDelta& pending : map.pending) pending.update.Ack(ack);
+  }
 }
 
 void LinkScheduler::OnPeerSummary(const link::ResyncSummary& summary, LinkStats* stats) {
@@ -213,30 +325,29 @@ void LinkScheduler::OnPeerSummary(const link::ResyncSummary& summary, LinkStats*
   for (auto& [map_id, map] : maps_) {
     const auto found = versions.find(map_id);
     map.peer_version = found == versions.end() ? 0 : found->second;
-    while (!map.pending.empty() && map.pending.front().delta.to_version <= map.peer_version) {
+    while (!map.pending.empty() && map.pending.front().to_version <= map.peer_version) {
       map.pending.pop_front();
       ++stats->deltas_pruned;
     }
-    CheckPeerMap(map, stats);
+    CheckPeerMap(map_id, map, stats);
   }
 }
 
-void LinkScheduler::CheckPeerMap(OutMap& map, LinkStats* stats) {
+void LinkScheduler::CheckPeerMap(const std::string& map_id, OutMap& map, LinkStats* stats) {
   const std::uint64_t version = map.mirror.version();
-  if (map.snapshot_due) {
+  if (map.snapshot) {
     // Confirmed once the peer holds its version (a reset snapshot: exactly that version).
     const bool held = map.reset ? map.peer_version == map.snapshot_version
                                 : map.peer_version >= map.snapshot_version;
-    if (map.snapshot_timer.sends == 0 || !held) return;
-    map.snapshot_due = map.reset = false;
+    if (!map.snapshot->SentCompletely() || !held) return;
+    map.snapshot.reset();
+    map.reset = false;
   }
   const bool ahead = map.peer_version > version;  // the peer holds a map we never made
   const bool gap = map.peer_version < version &&
-                   (map.pending.empty() || map.pending.front().delta.from_version > map.peer_version);
+                   (map.pending.empty() || map.pending.front().from_version > map.peer_version);
   if (!ahead && !gap) return;
-  map.snapshot_due = true;
-  map.reset = ahead;
-  map.snapshot_timer = {};
+  QueueSnapshot(map_id, map, ahead);
   ++stats->snapshots_queued;
 }
 
@@ -244,8 +355,15 @@ void LinkScheduler::ResendAllNow() {
   for (auto& [seq, pending] : annotations_) pending.timer.timeout_s = 0.0;
   for (auto& [entity, pending] : corrections_) pending.timer.timeout_s = 0.0;
   for (auto& [map_id, map] : maps_) {
-    map.snapshot_timer.timeout_s = 0.0;
-    for (PendingDelta& pending : map.pending) pending.timer.timeout_s = 0.0;
+    if (map.snapshot) map.snapshot->DueNow();
+    for (PendingDelta& pending : map.pending) pending.update.DueNow();
+  }
+}
+
+void LinkScheduler::OnPeerRestart() {
+  for (auto& [map_id, map] : maps_) {
+    if (map.snapshot) map.snapshot->Restart(next_group_++);
+    for (PendingDelta& pending : map.pending) pending.update.Restart(next_group_++);
   }
 }
 

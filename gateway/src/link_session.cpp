@@ -94,7 +94,11 @@ std::optional<std::string> LinkSession::BuildFrame(double now_s) {
                       receiver_.FeedbackDue(now_s) ||
                       (peer_alive(now_s) && now_s - last_sent_s_ >= options_.heartbeat_s);
   const bool full = has_data && selection.full && max_bytes >= options_.packet_bytes;
-  const bool paced = has_data && now_s - last_sent_s_ >= options_.min_packet_interval_s;
+  // While map data waits, a packet the budget cuts short waits for a full one: every packet
+  // pays 38-52 bytes of headers and one round of poses, so fewer, fuller packets leave the map
+  // class most of the budget (docs/gateway.md, "Scheduler policy").
+  const bool cut_short = selection.map_waiting && max_bytes < options_.packet_bytes;
+  const bool paced = has_data && !cut_short && now_s - last_sent_s_ >= options_.min_packet_interval_s;
   if (!urgent && !full && !paced) return std::nullopt;
 
   std::string frame = EncodeFrame(envelope.SerializeAsString(), options_.compress);
@@ -124,16 +128,26 @@ FrameResult LinkSession::Reject(FrameStatus status, std::string message) {
 
 void LinkSession::OnPeerSession(std::uint64_t session, double now_s) {
   if (session == peer_session_) return;
-  if (peer_session_ != 0) receiver_.OnPeerRestart(now_s);
+  if (peer_session_ != 0) {
+    receiver_.OnPeerRestart(now_s);
+    scheduler_.OnPeerRestart();  // the pieces it acknowledged are gone with it
+  }
   peer_session_ = session;
   awaiting_resync_ = true;  // a new peer: learn what it holds before sending more
 }
 
-// The domain items of an envelope (resync messages are left to OnFrame); the first error if any.
-std::string LinkSession::DecodeItems(const link::Envelope& envelope, std::vector<ReceivedItem>* items) {
+// The domain items of an envelope (resync messages and fragments, checked here, are left to
+// OnFrame); the first error if any.
+std::string LinkSession::DecodeItems(const link::Envelope& envelope,
+                                     std::vector<ReceivedItem>* items) const {
   for (int i = 0; i < envelope.items_size(); ++i) {
     const link::Item& item = envelope.items(i);
     if (item.has_resync_request() || item.has_resync_summary()) continue;
+    if (item.has_fragment()) {
+      const std::string error = CheckFragment(item.fragment(), receiver_.max_update_bytes());
+      if (!error.empty()) return "item " + std::to_string(i) + ": " + error;
+      continue;
+    }
     std::string error;
     std::optional<DomainItem> decoded = FromProto(item, envelope.base_stamp_ms(), &error);
     if (!decoded) return "item " + std::to_string(i) + ": " + error;
@@ -176,8 +190,30 @@ FrameResult LinkSession::OnFrame(std::string_view bytes, double now_s) {
       }
     }
   }
+  AcceptFragments(envelope, &items, now_s);
   for (const DomainItem& item : receiver_.Accept(std::move(items), now_s)) domain_.Deliver(item);
   return frame;
+}
+
+// Map updates the envelope's fragments complete join the items. One that does not decode is
+// dropped and counted (its pieces came in earlier frames, which were sound); the sender resends
+// it when its version stays unconfirmed.
+void LinkSession::AcceptFragments(const link::Envelope& envelope, std::vector<ReceivedItem>* items,
+                                  double now_s) {
+  for (const link::Item& item : envelope.items()) {
+    if (!item.has_fragment()) continue;
+    std::optional<std::string> whole = receiver_.AcceptFragment(item.seq(), item.fragment(), now_s);
+    if (!whole) continue;
+    ++stats_.updates_reassembled;
+    link::Item update;
+    std::optional<DomainItem> decoded;
+    if (update.ParseFromString(*whole) && update.has_map()) decoded = FromProto(update, 0, nullptr);
+    if (!decoded) {
+      ++stats_.reassembled_invalid;
+      continue;
+    }
+    items->push_back({0, std::move(*decoded)});
+  }
 }
 
 }  // namespace pena::gateway

@@ -96,6 +96,8 @@ std::string Summary(const RunnerOptions& options, const LinkSession& session,
        << ", \"frames_sent\": " << stats.frames_sent << ", \"wire_bytes_sent\": " << stats.wire_bytes_sent
        << ", \"frames_received\": " << stats.frames_received
        << ", \"frames_rejected\": " << stats.rejected_total() << ", \"resyncs\": " << stats.resyncs
+       << ", \"updates_reassembled\": " << stats.updates_reassembled
+       << ", \"reassembled_invalid\": " << stats.reassembled_invalid
        << ", \"pending_deltas\": " << session.scheduler().pending_deltas();
   if (dds != nullptr) PutDdsStats(json, dds->stats());
   json << ", \"sent\": {";

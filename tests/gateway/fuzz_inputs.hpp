@@ -42,6 +42,16 @@ inline std::vector<std::string> Corpus() {
   SyntheticTeamOptions options;
   options.alarm_period_s = 5.0;
   SyntheticTeam team(options);
+  // A map update far larger than a packet, so the corpus holds fragments too.
+  line_map::LineMap global;
+  std::vector<line_map::LineSegment> walls(150);
+  for (std::size_t i = 0; i < walls.size(); ++i) {
+    walls[i].segment.start_m = {4.0 * static_cast<double>(i % 30), 0.5 * static_cast<double>(i / 30)};
+    walls[i].segment.end_m = walls[i].segment.start_m + Eigen::Vector2d(3.0, 0.0);
+    walls[i].support_cells = 40;
+    walls[i].observations = 5;
+  }
+  pair.near.Offer(MapChange{"global", global.Integrate(walls, "global"), false});
   while (pair.now_s < 30.0) {
     for (DomainItem& item : team.Advance(pair.now_s)) pair.near.Offer(std::move(item));
     pair.Step(0.01);
@@ -105,6 +115,7 @@ struct FuzzCounts {
   std::array<std::size_t, 9> by_status{};
   std::size_t delivered = 0;
   std::size_t silent_rejections = 0;
+  std::size_t corpus_fragments = 0;  // fragment items in the real frames mutated
   bool still_accepts_valid = false;
 };
 
@@ -116,6 +127,11 @@ inline FuzzCounts RunFuzz(std::size_t inputs, std::uint64_t seed) {
   FrameStreamDecoder stream;
   std::mt19937_64 random(seed);
   FuzzCounts counts;
+  for (const std::string& frame : corpus) {
+    link::Envelope envelope;
+    if (!envelope.ParseFromString(DecodeFrame(frame).payload)) continue;
+    for (const link::Item& item : envelope.items()) counts.corpus_fragments += item.has_fragment() ? 1 : 0;
+  }
   for (std::size_t i = 0; i < inputs; ++i) {
     const std::string input = Input(corpus, random);
     const FrameResult result = session.OnFrame(input, 1.0 + 1e-3 * static_cast<double>(i));
@@ -135,8 +151,8 @@ inline void PrintFuzz(std::size_t inputs, const FuzzCounts& counts) {
   for (std::size_t s = 0; s < counts.by_status.size(); ++s) {
     std::printf(" %s %zu", ToString(static_cast<FrameStatus>(s)), counts.by_status[s]);
   }
-  std::printf("; %zu items delivered; %zu rejections without a message\n", counts.delivered,
-              counts.silent_rejections);
+  std::printf("; %zu items delivered; %zu rejections without a message; %zu fragments in the "
+              "corpus\n", counts.delivered, counts.silent_rejections, counts.corpus_fragments);
 }
 
 }  // namespace pena::gateway::testing

@@ -17,6 +17,7 @@ TEST(Fuzz, RandomMutatedAndTruncatedFramesNeverCrashTheDecoder) {
   EXPECT_GT(counts.by_status[static_cast<std::size_t>(FrameStatus::kBadCrc)], 0U);
   EXPECT_GT(counts.by_status[static_cast<std::size_t>(FrameStatus::kBadCompression)], 0U);
   EXPECT_TRUE(counts.still_accepts_valid);
+  EXPECT_GT(counts.corpus_fragments, 0U) << "map pieces are fuzzed too";
 }
 
 }  // namespace

@@ -4,11 +4,12 @@
 # at the command post < 2 s, the post's global map equals fusion's final map and converged
 # < 60 s after its last change, and no map version was skipped at the post through the 30 s
 # outage (every version applied by delta). Exit 77 (skip) without root, ip or tc.
+# usage: quick_link_test.sh REPO BUILD_DIR PENA_GATEWAY (ctest passes the pena-gateway it built;
+# a PENA_GATEWAY in the environment is ignored, so the test always runs the binary under test)
 set -euo pipefail
-repo=$1; build=$2
+repo=$1; build=$2; gateway=$3
 [[ $(id -u) == 0 ]] || { echo "skipped: needs root for network namespaces"; exit 77; }
 command -v ip > /dev/null && command -v tc > /dev/null || { echo "skipped: needs ip and tc"; exit 77; }
-gateway=${PENA_GATEWAY:-$build/gateway/pena-gateway}
 for bin in "$gateway" "$build"/services/{entity/pena-entity,fusion/pena-fusion,monitor/pena-monitor}; do
   [[ -x $bin ]] || { echo "skipped: $bin not built"; exit 77; }
 done
@@ -24,12 +25,25 @@ if [[ ! -f $out/runs/gateway-9.6/result.json ]]; then
   exit 1
 fi
 cat "$out/runs/gateway-9.6/result.json"
-python3 - "$out/runs/gateway-9.6/result.json" <<'PY'
-import json, sys
-r = json.load(open(sys.argv[1]))
+python3 - "$out/runs/gateway-9.6" <<'PY'
+import json, os, sys
+run = sys.argv[1]
+r = json.load(open(f"{run}/result.json"))
+times = json.load(open(f"{run}/times.json"))
 failures = []
-if r["poses_at_post"] < 0.5 * r["poses_written"]:
-    failures.append(f"only {r['poses_at_post']} of {r['poses_written']} poses reached the post")
+# Poses keep flowing: the gateway sends the latest pose per entity per packet (stale ones are
+# replaced, by design), and at 9.6 kbit/s a packet goes about every 0.5 s while map data waits
+# (docs/gateway.md). So ask for at least 1 pose per entity per second of the mission outside
+# the outage, not for a share of the poses written.
+entities = len(os.listdir(f"{run}/entities"))
+active_s = (times["entities_end_ns"] - times["entities_start_ns"]) / 1e9
+outage_s = r["outage_measured_s"][1] - r["outage_measured_s"][0] if r["outage_measured_s"] else 0.0
+rate_hz = r["poses_at_post"] / max(1e-9, entities * (active_s - outage_s))
+print(f"poses at the post: {rate_hz:.2f} per entity per second outside the outage "
+      f"({r['poses_at_post']} of {r['poses_written']} written, {entities} entities, {active_s:.1f} s "
+      f"mission, {outage_s:.1f} s outage)")
+if rate_hz < 1.0:
+    failures.append(f"only {rate_hz:.2f} poses per entity per second reached the post, want >= 1")
 if r["pose_age_p99_s"] is None or r["pose_age_p99_s"] >= 2.0:
     failures.append(f"pose age p99 {r['pose_age_p99_s']} s, want < 2 s")
 if not r["post_map_equals_fusion"]:

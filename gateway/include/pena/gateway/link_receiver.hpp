@@ -5,12 +5,14 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "link.pb.h"
 #include "pena/gateway/link_items.hpp"
+#include "pena/gateway/map_fragments.hpp"
 
 namespace pena::gateway {
 
@@ -19,6 +21,8 @@ struct ReceiverOptions {
   std::size_t max_early_deltas = 4096;   // per map: deltas waiting for a lost predecessor
   std::size_t max_selective_acks = 32;   // seqs listed beyond the cumulative ack
   double ack_delay_s = 0.2;              // an ack waits this long for a packet to ride on
+  std::size_t max_update_bytes = 4 << 20;   // largest map update accepted in fragments
+  std::size_t max_partial_bytes = 8 << 20;  // fragments held for incomplete updates (all maps)
 };
 
 // One received item with its reliable sequence number (0: not seq-acknowledged).
@@ -34,6 +38,12 @@ class LinkReceiver {
 
   // Takes decoded items of one accepted envelope; returns those to hand to the domain, in order.
   std::vector<DomainItem> Accept(std::vector<ReceivedItem> items, double now_s);
+  // Takes one checked fragment (CheckFragment) with its seq; returns the serialised map update
+  // (an Item) when this piece completes it. Duplicates are acknowledged and ignored.
+  std::optional<std::string> AcceptFragment(std::uint64_t seq, const link::Fragment& fragment,
+                                            double now_s);
+  const FragmentAssembler& fragments() const { return assembler_; }
+  std::size_t max_update_bytes() const { return options_.max_update_bytes; }
   // Forgets the peer's sequence numbers (it restarted and counts from 1 again).
   void OnPeerRestart(double now_s);
 
@@ -73,6 +83,7 @@ class LinkReceiver {
   std::map<std::string, double> pose_stamps_;              // newest delivered, by entity
   std::map<std::string, std::uint64_t> correction_versions_;  // newest delivered, by entity
   std::map<std::string, InMap> maps_;
+  FragmentAssembler assembler_;
 };
 
 }  // namespace pena::gateway

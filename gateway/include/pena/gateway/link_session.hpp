@@ -60,7 +60,8 @@ class LinkSession {
   bool AddControl(link::Envelope* envelope, double now_s) const;
   FrameResult Reject(FrameStatus status, std::string message);
   void OnPeerSession(std::uint64_t session, double now_s);
-  static std::string DecodeItems(const link::Envelope& envelope, std::vector<ReceivedItem>* items);
+  std::string DecodeItems(const link::Envelope& envelope, std::vector<ReceivedItem>* items) const;
+  void AcceptFragments(const link::Envelope& envelope, std::vector<ReceivedItem>* items, double now_s);
 
   LinkOptions options_;
   DomainSide& domain_;

@@ -32,6 +32,8 @@ struct LinkStats {
   std::uint64_t deltas_pruned = 0;     // map deltas the peer confirmed (by version)
   std::uint64_t snapshots_queued = 0;  // whole maps sent because the peer's history had a gap
   std::uint64_t resyncs = 0;           // summaries received after a silence (outage, start)
+  std::uint64_t updates_reassembled = 0;  // map updates received in fragments and made whole
+  std::uint64_t reassembled_invalid = 0;  // of those, ones that did not decode (dropped)
   std::uint64_t rejected_total() const;
 };
 
