@@ -132,7 +132,7 @@ geometry::Trajectory Trajectory(const Run& run) {
 void WriteStatusCsv(const std::filesystem::path& path, const Run& run) {
   std::ofstream out(path);
   out << "stamp,status,accepted,confidence,score,hits,points,virtual_points,constraint_ratio,"
-         "degenerate,window_xy_m,window_theta_deg,correction_x,correction_y,correction_theta_deg,"
+         "degenerate,along_drop,window_xy_m,window_theta_deg,correction_x,correction_y,correction_theta_deg,"
          "x,y,theta\n";
   for (const localisation::MapCorrection& r : run.rounds) {
     const geometry::Pose2& c = r.correction;
@@ -140,7 +140,7 @@ void WriteStatusCsv(const std::filesystem::path& path, const Run& run) {
     out << Fixed(r.stamp_s, 6) << ',' << localisation::ToString(r.status) << ',' << (r.accepted ? 1 : 0)
         << ',' << Fixed(r.confidence, 3) << ',' << Fixed(r.score, 3) << ',' << r.hits << ',' << r.points
         << ',' << r.virtual_points << ',' << Fixed(r.constraint_ratio, 4) << ',' << (r.degenerate ? 1 : 0)
-        << ',' << Fixed(r.window_xy_m, 3) << ',' << Fixed(r.window_theta_rad / kDeg, 2) << ','
+        << ',' << Fixed(r.along_drop, 3) << ',' << Fixed(r.window_xy_m, 3) << ',' << Fixed(r.window_theta_rad / kDeg, 2) << ','
         << Fixed(c.x_m, 4) << ',' << Fixed(c.y_m, 4) << ',' << Fixed(c.theta_rad / kDeg, 3) << ','
         << Fixed(p.x_m, 4) << ',' << Fixed(p.y_m, 4) << ',' << Fixed(p.theta_rad, 5) << '\n';
   }

@@ -23,18 +23,15 @@ void Validate(const GlobalLocaliserOptions& o) {
   Require(o.tile_size_m > 0.0, "tile_size_m", "> 0 m", o.tile_size_m);
   Require(o.margin_m >= 0.0, "margin_m", ">= 0 m", o.margin_m);
   Require(o.max_hypotheses >= 1, "max_hypotheses", ">= 1", o.max_hypotheses);
+  Require(o.heading_sectors >= 1, "heading_sectors", ">= 1", o.heading_sectors);
+  Require(o.refine_candidates >= 1, "refine_candidates", ">= 1", o.refine_candidates);
   Require(o.max_range_m > 0.0, "max_range_m", "> 0 m", o.max_range_m);
   Require(o.coarse_step_theta_rad > 0.0, "coarse_step_theta_rad", "> 0 rad", o.coarse_step_theta_rad);
-  scan_matching::ValidateWindow({o.tile_size_m, o.tile_size_m, 2.0 * std::numbers::pi,
+  scan_matching::ValidateWindow({o.tile_size_m, o.tile_size_m, 2.0 * std::numbers::pi / o.heading_sectors,
                                  o.coarse_step_xy_m, o.coarse_step_theta_rad},
                                 o.coarse);
   scan_matching::ValidateWindow(o.fine_window, o.fine);
-}
-
-// Same place: closer than this in position and heading.
-bool SamePlace(const geometry::Pose2& a, const geometry::Pose2& b) {
-  return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m) < 0.5 &&
-         std::abs(geometry::NormalizeAngle(a.theta_rad - b.theta_rad)) < 0.1745;
+  scan_matching::ValidateWindow(o.verify_window, o.fine);
 }
 
 // Best first by agreement, duplicates of a better hypothesis dropped, at most `keep`.
@@ -56,6 +53,11 @@ void Rank(int keep, GlobalResult& result) {
 }
 
 }  // namespace
+
+bool SamePlace(const geometry::Pose2& a, const geometry::Pose2& b) {
+  return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m) < 0.5 &&
+         std::abs(geometry::NormalizeAngle(a.theta_rad - b.theta_rad)) < 0.1745;
+}
 
 scan_matching::Points2 SampleSegments(const std::vector<geometry::Segment2>& segments,
                                       double spacing_m) {
@@ -95,43 +97,51 @@ struct GlobalLocaliser::Impl {
     }
   }
 
-  // Best coarse pose of every tile: branch and bound over the tile x all headings.
+  // Best coarse pose of every tile and heading sector (branch and bound), the best
+  // refine_candidates of them by coarse score.
   std::vector<PoseHypothesis> CoarseCandidates(const scan_matching::Points2& scan, long& scored) const {
-    const scan_matching::SearchWindow window{options.tile_size_m, options.tile_size_m,
-                                             2.0 * std::numbers::pi, options.coarse_step_xy_m,
-                                             options.coarse_step_theta_rad};
+    const double sector_rad = 2.0 * std::numbers::pi / options.heading_sectors;
+    const scan_matching::SearchWindow window{options.tile_size_m, options.tile_size_m, sector_rad,
+                                             options.coarse_step_xy_m, options.coarse_step_theta_rad};
     std::vector<PoseHypothesis> candidates;
-    for (const geometry::Pose2& centre : tile_centres) {
-      const scan_matching::MatchResult match = coarse.MatchBranchAndBound(scan, centre, window);
-      scored += match.candidates_scored;
-      if (!match.converged) continue;
-      candidates.push_back({match.grid_pose, match.score, match.hits, match.score});
+    for (const geometry::Pose2& tile : tile_centres) {
+      for (int sector = 0; sector < options.heading_sectors; ++sector) {
+        const geometry::Pose2 centre{tile.x_m, tile.y_m, -std::numbers::pi + (sector + 0.5) * sector_rad};
+        const scan_matching::MatchResult match = coarse.MatchBranchAndBound(scan, centre, window);
+        scored += match.candidates_scored;
+        if (!match.converged) continue;
+        candidates.push_back({match.grid_pose, match.score, match.hits, match.score});
+      }
     }
+    const auto keep = std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(options.refine_candidates));
+    std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep), candidates.end(),
+                      [](const PoseHypothesis& a, const PoseHypothesis& b) { return a.coarse_score > b.coarse_score; });
+    candidates.resize(keep);
     return candidates;
   }
 
   // Beam-by-beam agreement of the real scan with the virtual scan from `map_from_body`.
-  double Agreement(const sensors::LaserScan& scan, const geometry::Pose2& map_from_body) const {
+  BeamAgreement Agreement(const sensors::LaserScan& scan, const geometry::Pose2& map_from_body) const {
     std::vector<float> virtual_m;
     sensors::LaserGeometry geometry = scan.geometry;
     geometry.max_range_m = options.max_range_m;
     scanner.CastScan(map_from_body, geometry, scan.ranges_m.size(), virtual_m);
-    long agree = 0, through = 0, returns = 0;
+    BeamAgreement counts;
     for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
       const double real = scan.ranges_m[i];
       if (!scan.IsReturn(i) || real < options.min_range_m || real > options.max_range_m) continue;
-      ++returns;
+      ++counts.returns;
       const double expected = virtual_m[i];  // +inf when the plan has nothing there
-      if (std::abs(real - expected) <= options.agreement_tolerance_m) ++agree;
-      else if (real > expected) ++through;  // the beam passed where the plan has a wall
+      if (std::abs(real - expected) <= options.agreement_tolerance_m) ++counts.agree;
+      else if (real > expected) ++counts.through;  // the beam passed where the plan has a wall
     }
-    return returns == 0 ? 0.0 : static_cast<double>(agree - through) / static_cast<double>(returns);
+    return counts;
   }
 
   // Fine match around a coarse pose; the score is eq. 2 with the fine threshold.
-  PoseHypothesis Refine(const scan_matching::Points2& scan, const PoseHypothesis& coarse_pose) const {
-    const scan_matching::MatchResult match =
-        fine.MatchExhaustive(scan, coarse_pose.map_from_body, options.fine_window);
+  PoseHypothesis Refine(const scan_matching::Points2& scan, const PoseHypothesis& coarse_pose,
+                        const scan_matching::SearchWindow& window) const {
+    const scan_matching::MatchResult match = fine.MatchExhaustive(scan, coarse_pose.map_from_body, window);
     PoseHypothesis refined = coarse_pose;
     refined.map_from_body = match.reference_from_scan;
     refined.score = fine.Score(scan, match.reference_from_scan);
@@ -161,7 +171,7 @@ GlobalResult GlobalLocaliser::Localise(const scan_matching::Points2& scan_body) 
   std::erase_if(scan, [&](const Eigen::Vector2d& p) { return p.norm() > impl_->options.max_range_m; });
   if (scan.empty() || impl_->reference.empty()) return result;
   for (const PoseHypothesis& candidate : impl_->CoarseCandidates(scan, result.candidates_scored)) {
-    PoseHypothesis refined = impl_->Refine(scan, candidate);
+    PoseHypothesis refined = impl_->Refine(scan, candidate, impl_->options.fine_window);
     refined.agreement = refined.score;
     result.hypotheses.push_back(refined);
   }
@@ -170,17 +180,43 @@ GlobalResult GlobalLocaliser::Localise(const scan_matching::Points2& scan_body) 
 }
 
 GlobalResult GlobalLocaliser::Localise(const sensors::LaserScan& scan) const {
+  return Localise(scan, impl_->options.max_hypotheses);
+}
+
+PoseHypothesis GlobalLocaliser::Verify(const sensors::LaserScan& scan,
+                                       const geometry::Pose2& map_from_body_guess) const {
+  scan_matching::Points2 points = scan_matching::ScanToPoints(scan, impl_->options.min_range_m);
+  std::erase_if(points, [&](const Eigen::Vector2d& p) { return p.norm() > impl_->options.max_range_m; });
+  PoseHypothesis guess{map_from_body_guess, 0.0, 0, 0.0, 0.0};
+  if (points.empty() || impl_->reference.empty()) return guess;
+  PoseHypothesis refined = impl_->Refine(points, guess, impl_->options.verify_window);
+  refined.agreement = impl_->Agreement(scan, refined.map_from_body).fraction();
+  return refined;
+}
+
+GlobalResult GlobalLocaliser::Localise(const sensors::LaserScan& scan, int max_hypotheses) const {
   scan_matching::Points2 points = scan_matching::ScanToPoints(scan, impl_->options.min_range_m);
   std::erase_if(points, [&](const Eigen::Vector2d& p) { return p.norm() > impl_->options.max_range_m; });
   GlobalResult result;
   if (points.empty() || impl_->reference.empty()) return result;
   for (const PoseHypothesis& candidate : impl_->CoarseCandidates(points, result.candidates_scored)) {
-    PoseHypothesis refined = impl_->Refine(points, candidate);
-    refined.agreement = impl_->Agreement(scan, refined.map_from_body);
+    PoseHypothesis refined = impl_->Refine(points, candidate, impl_->options.fine_window);
+    refined.agreement = impl_->Agreement(scan, refined.map_from_body).fraction();
     result.hypotheses.push_back(refined);
   }
-  Rank(impl_->options.max_hypotheses, result);
+  Rank(std::max(1, max_hypotheses), result);
   return result;
+}
+
+BeamAgreement GlobalLocaliser::Agreement(const sensors::LaserScan& scan, const geometry::Pose2& map_from_body) const {
+  return impl_->Agreement(scan, map_from_body);
+}
+
+bool GlobalLocaliser::Blocked(const geometry::Pose2& from, const geometry::Pose2& to) const {
+  const Eigen::Vector2d step(to.x_m - from.x_m, to.y_m - from.y_m);
+  const double length = step.norm();
+  if (length < 1e-6) return false;
+  return std::isfinite(impl_->scanner.CastRay({from.x_m, from.y_m}, step / length, length));
 }
 
 const scan_matching::Points2& GlobalLocaliser::reference() const { return impl_->reference; }

@@ -1,29 +1,41 @@
 #include "pena/localisation/localisation_chain.hpp"
 
-#include "pena/scan_matching/point_set.hpp"
+#include <cmath>
 
 namespace pena::localisation {
+namespace {
+
+// The odometry of the unknown phase: its frame starts at an arbitrary heading, so an absolute
+// compass heading would fight the gyro; a huge compass noise gives its readings no weight.
+odometry::LaserOdometryOptions UnknownPhase(odometry::LaserOdometryOptions options) {
+  options.dead_reckoning.heading.compass_noise_rad = 1e6;
+  return options;
+}
+
+}  // namespace
 
 struct LocalisationChain::Impl {
   LocalisationChainOptions options;
+  sensors::EntityKind kind;
   odometry::LaserOdometry odometry;
   MapLocaliser map;
   std::unique_ptr<GlobalLocaliser> global;  // only while the start is still unknown
+  std::unique_ptr<GlobalTracker> tracker;
   bool anchored = true;
 
-  // Unknown start: the odometry runs in its own frame until a scan localises on the plan with a
-  // clear winner; then map_from_odom places that frame (section 4 needs a known start; this
-  // supplies it).
-  void TryGlobal(const sensors::LaserScan& scan, LocalisedPose& out) {
-    out.global = global->Localise(scan_matching::ScanToPoints(scan, options.odometry.min_range_m));
-    const GlobalResult& result = *out.global;
-    if (result.hypotheses.empty() || result.hypotheses[0].score < options.global_min_score ||
-        result.margin < options.global_min_margin) {
-      return;
-    }
-    const geometry::Pose2& map_from_body = result.hypotheses[0].map_from_body;
-    map.Reset(geometry::Compose(map_from_body, geometry::Inverse(out.odometry.world_from_body)));
+  // Unknown start: hypotheses are followed over keyframes until one wins (section 4 needs a known
+  // start; this supplies it). Then the odometry restarts at the winner on the plan, with the
+  // compass, exactly as with a known start.
+  void TryGlobal(const sensors::SensorRecord& record, const sensors::LaserScan& scan, LocalisedPose& out) {
+    const TrackerUpdate update = tracker->Update(scan, out.odometry.world_from_body);
+    out.global = update.ranked;
+    out.global_searched = update.searched;
+    if (!update.decided) return;
+    odometry = odometry::LaserOdometry(options.odometry, kind, update.decided->map_from_body, scan.stamp_s);
+    if (const auto restarted = odometry.Add(record)) out.odometry = *restarted;
+    map.Reset(geometry::Pose2{});
     anchored = true;
+    tracker.reset();
     global.reset();
   }
 };
@@ -31,13 +43,19 @@ struct LocalisationChain::Impl {
 LocalisationChain::LocalisationChain(const LocalisationChainOptions& options,
                                      sensors::EntityKind kind, std::vector<geometry::Segment2> plan,
                                      const geometry::Pose2& map_from_start, double start_stamp_s) {
-  const geometry::Pose2 odom_from_start = options.global_start ? geometry::Pose2{} : map_from_start;
+  const bool unknown = options.global_start;
   std::unique_ptr<GlobalLocaliser> global;
-  if (options.global_start) global = std::make_unique<GlobalLocaliser>(plan, options.global);
+  std::unique_ptr<GlobalTracker> tracker;
+  if (unknown) {
+    global = std::make_unique<GlobalLocaliser>(plan, options.global);
+    tracker = std::make_unique<GlobalTracker>(*global, options.tracker);
+  }
   impl_ = std::make_unique<Impl>(Impl{
-      options, odometry::LaserOdometry(options.odometry, kind, odom_from_start, start_stamp_s),
-      MapLocaliser(options.map, std::move(plan), geometry::Pose2{}), std::move(global),
-      !options.global_start});
+      options, kind,
+      odometry::LaserOdometry(unknown ? UnknownPhase(options.odometry) : options.odometry, kind,
+                              unknown ? geometry::Pose2{} : map_from_start, start_stamp_s),
+      MapLocaliser(options.map, std::move(plan), geometry::Pose2{}), std::move(global), std::move(tracker),
+      !unknown});
 }
 
 LocalisationChain::~LocalisationChain() = default;
@@ -52,13 +70,13 @@ std::optional<LocalisedPose> LocalisationChain::Add(const sensors::SensorRecord&
   out.stamp_s = estimate->stamp_s;
   out.odometry = *estimate;
   const bool first = estimate->status == odometry::MatchStatus::kFirst;
-  if (!impl_->anchored && (first || estimate->reference_changed)) impl_->TryGlobal(scan, out);
+  if (!impl_->anchored && (first || estimate->reference_changed)) impl_->TryGlobal(record, scan, out);
   if (impl_->anchored) {
     // Right after anchoring (or at the first scan) a round checks the start against the plan.
     const bool force = first || out.global.has_value();
-    out.correction = impl_->map.Update(scan, *estimate, force);
+    out.correction = impl_->map.Update(scan, out.odometry, force);
   }
-  out.map_from_body = impl_->map.MapFromBody(estimate->world_from_body);
+  out.map_from_body = impl_->map.MapFromBody(out.odometry.world_from_body);
   out.status = impl_->map.status();
   out.anchored = impl_->anchored;
   return out;

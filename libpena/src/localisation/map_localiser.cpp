@@ -31,6 +31,8 @@ void Validate(const MapLocaliserOptions& o) {
   Require(o.oversample >= 1, "oversample", ">= 1", o.oversample);
   Require(o.min_range_m >= 0.0, "min_range_m", ">= 0 m", o.min_range_m);
   Require(o.max_range_m > o.min_range_m, "max_range_m", "> min_range_m (m)", o.max_range_m);
+  Require(o.along_probe_m > 0.0, "along_probe_m", "> 0 m", o.along_probe_m);
+  Require(o.along_min_drop > 0.0, "along_min_drop", "> 0", o.along_min_drop);
 }
 
 // The window grown by `factor`, capped at `max` per extent.
@@ -47,6 +49,20 @@ long Candidates(const scan_matching::SearchWindow& w) {
   const auto side = [](double size, double step) { return 2L * std::lround(0.5 * size / step) + 1; };
   return side(w.size_x_m, w.step_xy_m) * side(w.size_y_m, w.step_xy_m) *
          side(w.size_theta_rad, w.step_theta_rad);
+}
+
+// How much eq. 2 falls when the best pose is moved by `probe_m` either way along `direction`
+// (body frame): the correlation surface's own evidence that the weak direction is constrained.
+double AlongDrop(const scan_matching::CorrelationScanMatcher& matcher, const scan_matching::Points2& real,
+                 const geometry::Pose2& best, const Eigen::Vector2d& direction, double probe_m) {
+  const double peak = matcher.Score(real, best);
+  double side = 0.0;
+  for (const double sign : {-1.0, 1.0}) {
+    const geometry::Pose2 moved{best.x_m + sign * probe_m * direction.x(),
+                                best.y_m + sign * probe_m * direction.y(), best.theta_rad};
+    side = std::max(side, matcher.Score(real, moved));
+  }
+  return peak - side;
 }
 
 }  // namespace
@@ -89,22 +105,29 @@ struct MapLocaliser::Impl {
   }
 
   MapCorrection Round(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body);
-  void Judge(const scan_matching::MatchResult& match, MapCorrection& round) const;
+  void Judge(const scan_matching::MatchResult& match, const scan_matching::CorrelationScanMatcher& matcher,
+             const scan_matching::Points2& real, MapCorrection& round) const;
   void Conclude(const geometry::Pose2& odom_from_body, MapCorrection& round);
 };
 
 // Accepts or rejects a round on the paper's correlation threshold, and keeps the least-squares
 // refinement only along directions the scan constrains.
-void MapLocaliser::Impl::Judge(const scan_matching::MatchResult& match, MapCorrection& round) const {
+void MapLocaliser::Impl::Judge(const scan_matching::MatchResult& match,
+                               const scan_matching::CorrelationScanMatcher& matcher,
+                               const scan_matching::Points2& real, MapCorrection& round) const {
   round.score = match.score;
   round.hits = match.hits;
   geometry::Pose2 correction = match.reference_from_scan;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(match.information.topLeftCorner<2, 2>());
   const Eigen::Vector2d values = solver.eigenvalues();  // ascending
   round.constraint_ratio = values(1) > 0.0 ? std::max(0.0, values(0)) / values(1) : 0.0;
-  if (round.constraint_ratio < options.degenerate_eigen_ratio) {
-    // Along a corridor neither least squares nor the correlation peak is trustworthy (a plan
-    // wall drawn across an opening pulls it): the odometry is kept in the weak direction.
+  const Eigen::Vector2d weak = solver.eigenvectors().col(0);
+  round.along_drop = AlongDrop(matcher, real, correction, weak, options.along_probe_m);
+  if (round.constraint_ratio < options.degenerate_eigen_ratio && round.along_drop < options.along_min_drop) {
+    // Along a corridor the point-to-line information is weak by construction; the correlation
+    // surface tells whether door frames and corridor ends still pin the pose down (the score
+    // falls off along the corridor). Where it is flat, a plan wall drawn across an opening
+    // could drag the pose: the odometry is kept in the weak direction.
     const Eigen::Vector2d strong = solver.eigenvectors().col(1);
     const Eigen::Vector2d kept = strong * strong.dot(Eigen::Vector2d(correction.x_m, correction.y_m));
     correction.x_m = kept.x();
@@ -154,7 +177,7 @@ MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
   const scan_matching::MatchResult match =
       Candidates(window) > 20000 ? matcher.MatchBranchAndBound(real, {}, window)
                                  : matcher.MatchExhaustive(real, {}, window);
-  Judge(match, round);
+  Judge(match, matcher, real, round);
   Conclude(odom_from_body, round);
   return round;
 }

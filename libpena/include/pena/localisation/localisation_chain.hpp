@@ -10,6 +10,7 @@
 #include "pena/geometry/pose2.hpp"
 #include "pena/geometry/segment2.hpp"
 #include "pena/localisation/global_localiser.hpp"
+#include "pena/localisation/global_tracker.hpp"
 #include "pena/localisation/map_localiser.hpp"
 #include "pena/odometry/laser_odometry.hpp"
 #include "pena/sensors/entity.hpp"
@@ -21,10 +22,13 @@ namespace pena::localisation {
 struct LocalisationChainOptions {
   odometry::LaserOdometryOptions odometry;
   MapLocaliserOptions map;
-  bool global_start = false;       // unknown start: localise the first scans on the whole plan
+  // Unknown start: the odometry runs in a frame of its own while global hypotheses are followed
+  // over the first keyframes (GlobalTracker); when one wins, the odometry restarts at it on the
+  // plan. In the unknown phase the compass is not used (its absolute heading does not hold in a
+  // frame started at an arbitrary heading).
+  bool global_start = false;
   GlobalLocaliserOptions global;
-  double global_min_score = 0.5;   // a global hypothesis is taken at this fine score ...
-  double global_min_margin = 0.05; // ... and this lead over the second; else the next keyframe
+  GlobalTrackerOptions tracker;
 };
 
 // The estimate at one scan.
@@ -34,7 +38,8 @@ struct LocalisedPose {
   odometry::OdometryEstimate odometry;    // the odometry's own estimate (its world frame)
   MapStatus status = MapStatus::kUnknown; // after this scan
   std::optional<MapCorrection> correction;     // a match round ran at this scan
-  std::optional<GlobalResult> global;          // a global localisation ran at this scan
+  std::optional<GlobalResult> global;          // the followed global hypotheses at this scan
+  bool global_searched = false;                // a whole-plan search ran at this scan
   bool anchored = false;                  // the odometry frame is placed on the plan
 };
 

@@ -37,6 +37,10 @@ struct MapLocaliserOptions {
   double min_range_m = 0.1;         // closer real returns are the carrier's body
   double max_range_m = 15.0;        // real and virtual ranges used, metres
   double degenerate_eigen_ratio = 0.05;  // J^T J translation eigen ratio below it: corridor
+  // ... unless eq. 2 falls by along_min_drop when the best pose moves along_probe_m either way
+  // along the weak direction (door frames, corridor ends): then that direction is corrected too.
+  double along_probe_m = 0.3;
+  double along_min_drop = 0.05;
   // Beyond the paper: a round at every scan, not only at reference changes, so a single badly
   // matched odometry scan (a corridor along which the odometry slid) is corrected as well.
   bool every_scan = false;
@@ -65,6 +69,7 @@ struct MapCorrection {
   int virtual_points = 0;                   // virtual scan returns (the plan seen from there)
   double constraint_ratio = 0.0;            // min / max translation eigenvalue of J^T J
   bool degenerate = false;                  // the weak direction was taken from odometry
+  double along_drop = 0.0;                  // eq. 2 fall along the weak direction (see options)
   double confidence = 0.0;                  // in [0, 1]: score x hit support x constraint
   double window_xy_m = 0.0;                 // searched window side
   double window_theta_rad = 0.0;

@@ -1,0 +1,90 @@
+#pragma once
+// Global localisation over a short walk (beyond the paper): one scan in a corridor whose doors
+// repeat every ~6 m, or next to a part the plan gets wrong, often fits a wrong place as well as the
+// right one. The tracker keeps the ranked hypotheses of whole-plan searches, each as a placement
+// of the odometry frame on the plan, re-fits each at every keyframe (GlobalLocaliser::Verify in a
+// narrow window) and scores it by beam agreement summed over all keyframes kept so far. All
+// hypotheses are scored on the same keyframes, so a place found by a later search (one is made
+// every few metres walked) competes on equal evidence. One wins when it leads every other by a
+// margin in beams and fits the latest scan well.
+
+#include <optional>
+#include <vector>
+
+#include "pena/geometry/pose2.hpp"
+#include "pena/localisation/global_localiser.hpp"
+#include "pena/sensors/laser_scan.hpp"
+
+namespace pena::localisation {
+
+// Options; validated by the constructor (messages name field and unit).
+struct GlobalTrackerOptions {
+  int max_tracks = 30;             // hypotheses followed at once (a search adds up to this many)
+  int max_keyframes = 16;          // keyframes kept as evidence (the latest)
+  int min_keyframes = 6;           // evidence from at least this many keyframes ...
+  double min_travel_m = 3.0;       // ... spread over this many metres walked before a decision
+  // The winner's evidence (agreeing minus see-through beams, summed over the keyframes) exceeds
+  // every other hypothesis' by this many beams ...
+  double decide_margin_beams = 150.0;
+  // ... and its path over the kept keyframes crosses no plan wall, and its agreement fraction
+  // at the latest keyframe is at least this: outside the plan
+  // (office: the annex) the true place scores low and a look-alike could otherwise win.
+  double min_agreement = 0.7;
+  // Weight of a see-through beam (the real beam passed where the plan has a wall) against an
+  // agreeing one. 0: a plan that lacks a passage (office: the west wing, the annex) would
+  // otherwise push the true place away from its mistakes onto a look-alike 6 m along.
+  double through_weight = 0.0;
+  double drop_margin_beams = 400.0;  // hypotheses trailing the leader by more are dropped
+  double search_every_m = 2.0;       // a new whole-plan search after this many metres walked
+};
+
+// One followed hypothesis.
+struct Track {
+  geometry::Pose2 map_from_odom;   // where the odometry frame sits on the plan if it is right
+  geometry::Pose2 map_from_body;   // at the latest keyframe
+  double evidence_beams = 0.0;     // agreeing minus see-through beams over the kept keyframes
+  double agreement = 0.0;          // agreement fraction at the latest keyframe
+  bool walks_through_walls = false; // its path over the kept keyframes crosses a plan wall
+};
+
+// What one update concluded.
+struct TrackerUpdate {
+  bool searched = false;                 // a whole-plan search ran at this scan
+  std::optional<PoseHypothesis> decided; // the winner at this scan (body pose on the plan)
+  GlobalResult ranked;                   // the tracks as hypotheses, best evidence first
+};
+
+// Follows global hypotheses of one entity until one wins. Not thread-safe.
+class GlobalTracker {
+ public:
+  // `localiser` must outlive the tracker.
+  explicit GlobalTracker(const GlobalLocaliser& localiser, const GlobalTrackerOptions& options = {});
+
+  // Feeds a keyframe scan with the odometry pose it was taken at (any fixed odometry frame).
+  TrackerUpdate Update(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body);
+
+  const std::vector<Track>& tracks() const { return tracks_; }
+  int searches() const { return searches_; }
+
+ private:
+  struct Keyframe {
+    sensors::LaserScan scan;
+    geometry::Pose2 odom_from_body;
+  };
+
+  void Search(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body);
+  void Score();
+  void Prune();
+  std::optional<PoseHypothesis> Decide() const;
+  GlobalResult Ranked() const;
+
+  const GlobalLocaliser* localiser_;
+  GlobalTrackerOptions options_;
+  std::vector<Track> tracks_;
+  std::vector<Keyframe> keyframes_;
+  double travel_m_ = 0.0;
+  double since_search_m_ = 0.0;
+  int searches_ = 0;
+};
+
+}  // namespace pena::localisation

@@ -1,0 +1,150 @@
+#include "pena/localisation/global_tracker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace pena::localisation {
+namespace {
+
+void Require(bool ok, const std::string& field, const std::string& rule, double value) {
+  if (!ok) {
+    throw std::invalid_argument("global_tracker." + field + " must be " + rule + ", got " +
+                                std::to_string(value));
+  }
+}
+
+void Validate(const GlobalTrackerOptions& o) {
+  Require(o.max_tracks >= 1, "max_tracks", ">= 1", o.max_tracks);
+  Require(o.max_keyframes >= 1, "max_keyframes", ">= 1", o.max_keyframes);
+  Require(o.min_keyframes >= 1 && o.min_keyframes <= o.max_keyframes, "min_keyframes",
+          "in [1, max_keyframes]", o.min_keyframes);
+  Require(o.min_travel_m >= 0.0, "min_travel_m", ">= 0 m", o.min_travel_m);
+  Require(o.decide_margin_beams >= 0.0, "decide_margin_beams", ">= 0", o.decide_margin_beams);
+  Require(o.drop_margin_beams > o.decide_margin_beams, "drop_margin_beams", "> decide_margin_beams",
+          o.drop_margin_beams);
+  Require(o.search_every_m > 0.0, "search_every_m", "> 0 m", o.search_every_m);
+  Require(o.through_weight >= 0.0, "through_weight", ">= 0", o.through_weight);
+}
+
+bool ByEvidence(const Track& a, const Track& b) { return a.evidence_beams > b.evidence_beams; }
+
+}  // namespace
+
+GlobalTracker::GlobalTracker(const GlobalLocaliser& localiser, const GlobalTrackerOptions& options)
+    : localiser_(&localiser), options_(options) {
+  Validate(options);
+}
+
+// Whole-plan search; its hypotheses not already followed become new tracks.
+void GlobalTracker::Search(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body) {
+  ++searches_;
+  since_search_m_ = 0.0;
+  const GlobalResult result = localiser_->Localise(scan, options_.max_tracks);
+  const geometry::Pose2 body_from_odom = geometry::Inverse(odom_from_body);
+  for (const PoseHypothesis& h : result.hypotheses) {
+    const bool followed = std::any_of(tracks_.begin(), tracks_.end(), [&](const Track& t) {
+      return SamePlace(t.map_from_body, h.map_from_body);
+    });
+    if (!followed) tracks_.push_back({geometry::Compose(h.map_from_body, body_from_odom), h.map_from_body, 0.0, h.agreement});
+  }
+}
+
+// Every track on every kept keyframe, at the placement its latest fit gives.
+void GlobalTracker::Score() {
+  for (Track& t : tracks_) {
+    t.evidence_beams = 0.0;
+    t.walks_through_walls = false;
+    std::optional<geometry::Pose2> previous;
+    for (const Keyframe& k : keyframes_) {
+      const geometry::Pose2 map_from_body = geometry::Compose(t.map_from_odom, k.odom_from_body);
+      const BeamAgreement a = localiser_->Agreement(k.scan, map_from_body);
+      t.evidence_beams += a.agree - options_.through_weight * a.through;
+      if (previous && localiser_->Blocked(*previous, map_from_body)) t.walks_through_walls = true;
+      previous = map_from_body;
+    }
+  }
+}
+
+// Drops duplicates (two tracks converged on one place), tracks far behind the leader and the
+// worst beyond max_tracks.
+void GlobalTracker::Prune() {
+  std::stable_sort(tracks_.begin(), tracks_.end(), ByEvidence);
+  std::vector<Track> kept;
+  for (const Track& t : tracks_) {
+    const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const Track& k) {
+      return SamePlace(k.map_from_body, t.map_from_body);
+    });
+    if (!duplicate) kept.push_back(t);
+  }
+  if (!kept.empty()) {
+    const double floor = kept.front().evidence_beams - options_.drop_margin_beams;
+    std::erase_if(kept, [&](const Track& t) { return t.evidence_beams < floor; });
+  }
+  if (kept.size() > static_cast<std::size_t>(options_.max_tracks)) kept.resize(static_cast<std::size_t>(options_.max_tracks));
+  tracks_ = std::move(kept);
+}
+
+// Tracks are sorted by evidence (Prune): the first wins if it leads the second by the margin.
+std::optional<PoseHypothesis> GlobalTracker::Decide() const {
+  if (tracks_.empty() || static_cast<int>(keyframes_.size()) < options_.min_keyframes ||
+      travel_m_ < options_.min_travel_m) {
+    return std::nullopt;
+  }
+  const Track& leader = tracks_.front();
+  if (leader.agreement < options_.min_agreement || leader.walks_through_walls) return std::nullopt;
+  if (tracks_.size() > 1 && leader.evidence_beams - tracks_[1].evidence_beams < options_.decide_margin_beams) {
+    return std::nullopt;
+  }
+  PoseHypothesis winner;
+  winner.map_from_body = leader.map_from_body;
+  winner.agreement = leader.agreement;
+  winner.score = leader.agreement;
+  return winner;
+}
+
+GlobalResult GlobalTracker::Ranked() const {
+  GlobalResult ranked;
+  for (const Track& t : tracks_) {
+    PoseHypothesis h;
+    h.map_from_body = t.map_from_body;
+    h.agreement = t.agreement;
+    h.score = t.evidence_beams;
+    ranked.hypotheses.push_back(h);
+  }
+  const auto& h = ranked.hypotheses;
+  ranked.margin = h.size() > 1 ? h[0].score - h[1].score : (h.empty() ? 0.0 : 1.0);
+  return ranked;
+}
+
+TrackerUpdate GlobalTracker::Update(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body) {
+  const double step_m = keyframes_.empty() ? 0.0
+                                           : std::hypot(odom_from_body.x_m - keyframes_.back().odom_from_body.x_m,
+                                                        odom_from_body.y_m - keyframes_.back().odom_from_body.y_m);
+  travel_m_ += step_m;
+  since_search_m_ += step_m;
+  keyframes_.push_back({scan, odom_from_body});
+  if (keyframes_.size() > static_cast<std::size_t>(options_.max_keyframes)) keyframes_.erase(keyframes_.begin());
+  // Existing tracks re-fitted at this scan (the odometry carried them here) ...
+  for (Track& t : tracks_) {
+    const PoseHypothesis h = localiser_->Verify(scan, geometry::Compose(t.map_from_odom, odom_from_body));
+    t.map_from_odom = geometry::Compose(h.map_from_body, geometry::Inverse(odom_from_body));
+    t.map_from_body = h.map_from_body;
+    t.agreement = h.agreement;
+  }
+  // ... new places from a whole-plan search when due, then all scored on the same keyframes.
+  TrackerUpdate update;
+  if (tracks_.empty() || since_search_m_ >= options_.search_every_m) {
+    Search(scan, odom_from_body);
+    update.searched = true;
+  }
+  Score();
+  Prune();
+  update.decided = Decide();
+  update.ranked = Ranked();
+  return update;
+}
+
+}  // namespace pena::localisation
