@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <thread>
 
 #include "load_run.hpp"
@@ -31,6 +32,7 @@ struct Cli {
   int domain = 77;
   double duration_s = 60.0;
   bool plan = true;
+  std::vector<std::string> fusion_args;  // passed on to pena-fusion after --config
   LoadOptions load;
 };
 
@@ -67,6 +69,7 @@ std::filesystem::path WriteFusionConfig(const Cli& cli) {
 pid_t SpawnFusion(const Cli& cli, const std::filesystem::path& config) {
   const std::string log = (std::filesystem::path(cli.work) / "fusion.log").string();
   std::vector<std::string> args = {cli.fusion, "--config", config.string()};
+  args.insert(args.end(), cli.fusion_args.begin(), cli.fusion_args.end());
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
   argv.push_back(nullptr);
@@ -111,6 +114,22 @@ void PrintSummary(const std::vector<WindowFigures>& windows, const ProcSample& f
               static_cast<double>(fusion.hwm_kb) / 1024.0, load_cpu_s);
 }
 
+// Fusion's own counters (correction attempts, matching time, superseded and stale requests,
+// queueing delay), from the "counters" object of its fusion_stats.json, on one line.
+void PrintFusionCounters(const std::filesystem::path& stats) {
+  std::ifstream in(stats);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t start = text.find("\"counters\"");
+  if (start == std::string::npos) return;
+  std::string line;
+  for (std::size_t i = text.find('{', start) + 1; i < text.size() && text[i] != '}'; ++i) {
+    if (text[i] == '\n' || text[i] == '"') continue;
+    if (text[i] == ' ' && !line.empty() && line.back() == ' ') continue;
+    line += text[i];
+  }
+  std::printf("fusion counters:%s\n", line.c_str());
+}
+
 int Run(const Cli& cli) {
   const DdsOptions dds = Loopback(cli.domain);
   std::vector<SourceStream> sources = ComputeSources(cli);
@@ -138,6 +157,7 @@ int Run(const Cli& cli) {
   waitpid(fusion, &status, 0);
   run.PrintTotals();
   PrintSummary(windows, last, load_cpu_s, cli.load.entities);
+  PrintFusionCounters(std::filesystem::path(cli.work) / "fusion_out" / "fusion_stats.json");
   std::printf("fusion exit %d; its stats: %s/fusion_out/fusion_stats.json, log %s/fusion.log\n",
               WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), cli.work.c_str(),
               cli.work.c_str());
@@ -163,6 +183,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--domain", cli.domain, "DDS domain id")->capture_default_str();
   app.add_flag("!--no-plan", cli.plan, "Do not give fusion the mission's apriori.csv");
+  app.add_option("--fusion-arg", cli.fusion_args,
+                 "An argument passed on to pena-fusion (repeatable), e.g. "
+                 "--fusion-arg=--correction-max-wait --fusion-arg=0.15");
   CLI11_PARSE(app, argc, argv);
   if (cli.load.entities < 1 || cli.duration_s <= 0.0 || cli.load.window_s <= 0.0) {
     std::fprintf(stderr, "pena-load: --entities >= 1, --duration > 0 s and --window > 0 s\n");

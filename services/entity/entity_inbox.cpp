@@ -26,6 +26,10 @@ std::string PoseCsv(const geometry::Pose2& pose) {
 void EntityService::Handle(const pena_dds::Correction& sample) {
   if (sample.entity_id().to_string() != entity_id_) return;
   ++summary_.corrections_received;
+  if (options_.start_unknown) {
+    HandleFrameCorrection(sample);
+    return;
+  }
   pipeline::CorrectionResult result;
   try {
     result = pipeline_->ApplyCorrection(FromDds(sample));

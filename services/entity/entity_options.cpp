@@ -49,6 +49,7 @@ EntityServiceOptions EntityOptionsFromConfig(const config::EntityConfig& config,
   EntityServiceOptions out;
   try {
     if (config.has_input()) out.input = ResolvePath(config_path, config.input());
+    if (!config.plan().empty()) out.plan = ResolvePath(config_path, config.plan());
     out.entity_id = config.entity_id();
     if (config.has_kind()) {
       out.kind = sensors::ParseEntityKind(config.kind());

@@ -16,6 +16,7 @@ namespace pena::services {
 
 struct EntityServiceOptions {
   std::filesystem::path input;        // native log or CARMEN log
+  std::filesystem::path plan;         // a priori plan (map localisation); empty: none
   std::string entity_id;              // empty: the log's own, else the file's stem
   std::optional<sensors::EntityKind> kind;  // empty: the log's own, else robot
   double rate = 1.0;                  // time scale; 0 = as fast as possible
@@ -25,6 +26,10 @@ struct EntityServiceOptions {
   double range_quantum_m = 0.01;
   double linger_s = 2.0;              // wall seconds to wait for acknowledgements at the end
   double wait_for_readers_s = 0.0;    // wall seconds to wait for a line-map reader at the start
+  // The start pose is unknown: the chain runs in the entity's own frame (its first pose is the
+  // origin), the status says so, and the fusion places it (docs/services.md, "Unknown start").
+  // Command line only (--unknown-start).
+  bool start_unknown = false;
   io::ReadOptions read;
   pipeline::EntityPipelineOptions pipeline;
   DdsOptions dds;

@@ -8,6 +8,7 @@
 #include "pena/io/input_error.hpp"
 #include "pena/io/line_csv.hpp"
 #include "pena/io/mission_log.hpp"
+#include "pena/io/plan_reader.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/pipeline/start_pose.hpp"
 #include "signals.hpp"
@@ -88,13 +89,22 @@ void EntityService::ReadAhead() {
   SetBounded(probe.entity_id(), entity_id_, "entity_id");
   const pipeline::StartPose start =
       pipeline::StartPoseOf(read_ahead_, description.format == "pena-log");
-  pipeline_.emplace(options_.pipeline, kind_, entity_id_, start.world_from_body,
+  pipeline_.emplace(options_.pipeline, kind_, entity_id_, StartFrame(start.world_from_body),
                     sensors::StampOf(read_ahead_.front()));
   summary_.entity_id = entity_id_;
+  if (!options_.plan.empty()) LoadPlan();
   spdlog::info("{}: {} ({}), {} log, start pose from {} ({:.3f}, {:.3f}, {:.3f})", entity_id_,
                options_.input.string(), sensors::ToString(kind_), description.format,
                start.source, start.world_from_body.x_m, start.world_from_body.y_m,
                start.world_from_body.theta_rad);
+}
+
+void EntityService::LoadPlan() {
+  std::vector<geometry::Segment2> plan = io::ReadPlan(options_.plan);
+  if (plan.empty()) throw io::InputError(options_.plan, 0, "the plan has no segments");
+  spdlog::info("{}: localising against the plan {} ({} walls)", entity_id_,
+               options_.plan.string(), plan.size());
+  pipeline_->SetPlan(std::move(plan));
 }
 
 void EntityService::WaitForReaders() {
@@ -164,6 +174,7 @@ void EntityService::Feed(const sensors::SensorRecord& record) {
   }
   std::optional<pipeline::ScanStep> step = pipeline_->Add(record);
   if (!step) return;
+  if (options_.start_unknown) ToPlacedFrame(*step);
   last_stamp_s_ = step->odometry.stamp_s;
   trajectory_.push_back({last_stamp_s_, step->world_from_body});
   const std::uint64_t map_version =
@@ -235,6 +246,7 @@ void EntityService::PublishStatus(pena_dds::EntityState state, const std::string
   status.global_map_version(pipeline_->global_map().version());
   status.corrections_applied(static_cast<std::uint64_t>(pipeline_->counts().corrections_applied));
   status.message(message.substr(0, 128));
+  status.start_unknown(options_.start_unknown);
   Send(status_writer_, status);
 }
 
@@ -253,6 +265,10 @@ void EntityService::Finish() {
   PublishStatus(pena_dds::ENTITY_FINISHED, summary_.interrupted ? "stopped by a signal" : "");
   summary_.local_map_version = pipeline_->local_map().version();
   summary_.local_map_segments = pipeline_->local_map().size();
+  if (pipeline_->has_plan()) {
+    spdlog::info("{}: plan localisation: {} rounds, {} corrections", entity_id_,
+                 pipeline_->counts().plan_rounds, pipeline_->counts().plan_corrections);
+  }
   if (!delta_writer_.WaitForAcknowledgments(options_.linger_s) ||
       !snapshot_writer_.WaitForAcknowledgments(options_.linger_s)) {
     spdlog::warn("{}: not every reader acknowledged the last line-map samples within {} s",

@@ -62,6 +62,8 @@ class EntityService {
                              pena_dds::GlobalMapSnapshot, pena_dds::SyncRequest>;
 
   void ReadAhead();
+  // --plan: reads the a priori plan and gives it to the pipeline (map localisation).
+  void LoadPlan();
   // --record: the recording directory and its native sensor log (header from the input).
   void StartRecording();
   void WaitForReaders();
@@ -72,6 +74,11 @@ class EntityService {
   void Handle(const pena_dds::GlobalMapSnapshot& sample);
   void Handle(const pena_dds::SyncRequest& sample);
   void Feed(const sensors::SensorRecord& record);
+  // --unknown-start (entity_unknown_start.cpp): the chain's start pose (the origin instead of
+  // the log's), a step's poses in the frame the fusion sent, and the fusion's frame corrections.
+  geometry::Pose2 StartFrame(const geometry::Pose2& known_world_from_start) const;
+  void ToPlacedFrame(pipeline::ScanStep& step) const;
+  void HandleFrameCorrection(const pena_dds::Correction& sample);
   void PublishDelta(const line_map::MapDelta& delta, double stamp_s);
   void PublishSnapshot();
   void PublishStatus(pena_dds::EntityState state, const std::string& message = "");
@@ -100,6 +107,8 @@ class EntityService {
   std::uint64_t correction_seq_ = 0;
   std::int64_t next_heartbeat_ns_ = 0;
   std::int64_t last_sync_request_ns_ = 0;
+  // --unknown-start: map_from_entity as the fusion last sent it (nullopt: not placed yet).
+  std::optional<geometry::Pose2> map_from_entity_;
 
   WorkQueue<Event> inbox_;
   Participant participant_;

@@ -19,21 +19,27 @@ using pena::services::EntityServiceOptions;
 
 // Command-line values; each given one overrides the config file's.
 struct Overrides {
-  std::string config, input, entity_id, kind, output_dir, participant_profile, log_level;
+  std::string config, input, entity_id, kind, output_dir, participant_profile, log_level, plan;
   std::vector<std::string> profiles_files;
   std::optional<double> rate, wait_for_readers_s, linger_s;
   std::optional<int> domain_id;
   bool record = false;
+  bool start_unknown = false;
 };
 
 void AddOptions(CLI::App& app, Overrides& o) {
   app.add_option("--config", o.config, "Config file (Protobuf text format, EntityConfig)");
   app.add_option("--input", o.input, "sensors.penalog, its entity directory, or a CARMEN log");
+  app.add_option("--plan", o.plan,
+                 "A priori plan (CSV, SVG or DXF, mission frame): localise against it");
   app.add_option("--entity-id", o.entity_id, "Entity id on the topics (default: the log's)");
   app.add_option("--kind", o.kind, "human or robot (default: the log's)");
   app.add_option("--rate", o.rate, "Time scale: 1 real time, 10 ten times faster, 0 flat out");
   app.add_option("--out", o.output_dir, "Output directory: trajectory.tum, line_map.csv");
   app.add_flag("--record", o.record, "Record sent/received samples under OUT/recording");
+  app.add_flag("--unknown-start", o.start_unknown,
+               "Ignore the log's start pose: run in the entity's own frame until the fusion "
+               "places it");
   app.add_option("--domain", o.domain_id, "DDS domain id (0..232)");
   app.add_option("--profile", o.participant_profile, "Participant profile (default pena_loopback)");
   app.add_option("--profiles-file", o.profiles_files, "DDS XML profile file (repeatable)");
@@ -51,6 +57,7 @@ EntityServiceOptions BuildOptions(const Overrides& o) {
   EntityServiceOptions options = pena::services::EntityOptionsFromConfig(config, o.config);
   if (!o.input.empty()) options.input = o.input;
   if (std::filesystem::is_directory(options.input)) options.input /= "sensors.penalog";
+  if (!o.plan.empty()) options.plan = o.plan;
   if (!o.entity_id.empty()) options.entity_id = o.entity_id;
   if (!o.kind.empty()) {
     options.kind = pena::sensors::ParseEntityKind(o.kind);
@@ -59,6 +66,7 @@ EntityServiceOptions BuildOptions(const Overrides& o) {
   if (o.rate) options.rate = *o.rate;
   if (!o.output_dir.empty()) options.output_dir = o.output_dir;
   if (o.record) options.record = true;
+  if (o.start_unknown) options.start_unknown = true;
   if (o.domain_id) options.dds.domain_id = *o.domain_id;
   if (!o.participant_profile.empty()) options.dds.participant_profile = o.participant_profile;
   if (!o.profiles_files.empty()) {

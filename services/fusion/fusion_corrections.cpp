@@ -1,139 +1,105 @@
-// pena-fusion: corrections (docs/fusion-service.md): each reference scan is matched against
-// virtual scans of the global map, gated and blended by the entity's fusion::CorrectionFilter,
-// and the corrected pose sent back. Part of FusionService (fusion_service.hpp).
+// pena-fusion: corrections and placement (docs/fusion-service.md). Reference scans go from the
+// listener to the CorrectionWorker (correction_worker.cpp: matched against virtual scans of the
+// global map, gated and blended by the entity's fusion::CorrectionFilter, sent back); the fusion
+// worker keeps the worker's copy of the state current, applies the alignment moves it asks for,
+// and tells an entity whose start was unknown where placement put it. Part of FusionService
+// (fusion_service.hpp).
 #include <spdlog/spdlog.h>
 
 #include <cmath>
 
 #include "from_dds.hpp"
 #include "fusion_service.hpp"
-#include "pena/fusion/correction.hpp"
 #include "to_dds.hpp"
 
 namespace pena::services {
-namespace {
 
-template <class PubSubType>
-std::uint32_t SizeOf(const typename PubSubType::type& sample) {
-  PubSubType type;
-  return type.getSerializedSizeProvider(const_cast<typename PubSubType::type*>(&sample))();
-}
-
-bool IsIdentity(const geometry::Pose2& pose) {
-  return pose.x_m == 0.0 && pose.y_m == 0.0 && pose.theta_rad == 0.0;
-}
-
-}  // namespace
-
-void FusionService::Handle(const pena_dds::ReferenceScan& sample, const SampleMeta& /*meta*/) {
+void FusionService::OnReferenceScan(const pena_dds::ReferenceScan& sample) {
   const std::string entity_id = sample.entity_id().to_string();
+  pena_dds::ReferenceScanPubSubType type;
   stats_.Count("received", topics::kReferenceScan.name, entity_id,
-               SizeOf<pena_dds::ReferenceScanPubSubType>(sample));
-  if (!options_.corrections) return;
-  CheckSchemaVersion(sample.schema_version(), "ReferenceScan");
-  // The entity's own odometry grows its uncertainty at every reference, attempted or not.
-  FilterOf(entity_id).Predict(services::FromDds(sample.odom_from_body()));
-  const std::int64_t now_ns = NowNs();
-  std::int64_t& last = last_correction_ns_[entity_id];
-  if (now_ns - last < static_cast<std::int64_t>(options_.correction_interval_s * 1e9)) return;
+               type.getSerializedSizeProvider(const_cast<pena_dds::ReferenceScan*>(&sample))());
+  if (!corrections_) return;
+  try {
+    CheckSchemaVersion(sample.schema_version(), "ReferenceScan");
+    corrections_->Offer(sample, NowNs());
+  } catch (const std::logic_error& error) {
+    stats_.Add("samples_dropped");
+    spdlog::warn("sample dropped: {}", error.what());
+  }
+}
+
+CorrectionSinks FusionService::Sinks() {
+  CorrectionSinks sinks;
+  sinks.send = [this](const std::string& entity_id, const pipeline::Correction& correction,
+                      std::uint64_t reference_seq, std::uint64_t for_version) {
+    SendCorrection(entity_id, correction, reference_seq, for_version);
+  };
+  sinks.realign = [this](const std::string& entity_id, const geometry::Pose2& map_from_entity,
+                         double confidence, std::uint64_t reference_seq) {
+    inbox_.Push(Event{Sample(Realign{entity_id, map_from_entity, confidence, reference_seq}),
+                      SampleMeta{NowNs(), NowNs(), {}}});
+  };
+  return sinks;
+}
+
+void FusionService::RefreshCorrectionContext() {
+  context_dirty_ = false;
+  context_refreshed_ns_ = NowNs();
+  if (!corrections_) return;
+  auto context = std::make_shared<CorrectionContext>();
+  const fusion::FusionState& state = store_->state();
+  context->global_version = state.global_version();
+  context->walls = ContextWalls(state.GlobalSnapshot().segments);
+  for (const std::string& entity_id : state.entity_ids()) {
+    const fusion::EntityStatus* status = state.entity(entity_id);
+    if (status != nullptr && status->map_from_entity) {
+      context->map_from_entity[entity_id] = *status->map_from_entity;
+    }
+  }
+  corrections_->SetContext(std::move(context));
+}
+
+void FusionService::Handle(const Realign& request, const SampleMeta& /*meta*/) {
+  // A placed entity keeps its own frame: the fusion moves its walls (journaled) and tells it.
+  Apply(fusion::AlignmentCorrection{NowS(), request.entity_id, request.map_from_entity,
+                                    request.confidence});
+  // Confidence 1: this is the frame the fusion holds for the entity's walls now.
+  if (start_unknown_[request.entity_id]) SendPlacement(request.entity_id, 1.0, request.reference_seq);
+}
+
+void FusionService::AfterPlacement(const std::string& entity_id,
+                                   const fusion::FusionOutput& output) {
+  if (!output.placement) return;
+  const fusion::PlacementResult& placement = *output.placement;
+  const double best = placement.hypotheses.empty() ? 0.0 : placement.hypotheses.front().score;
+  if (!placement.placed) {
+    spdlog::info("{}: placement pending ({} m of walls, {} hypotheses, best score {:.2f}, margin "
+                 "{:.1f} m): {}",
+                 entity_id, placement.local_length_m, placement.hypotheses.size(), best,
+                 placement.margin_m, placement.reason);
+    return;
+  }
+  const geometry::Pose2& pose = placement.map_from_entity;
+  spdlog::info("{}: placed at ({:.3f} m, {:.3f} m, {:.4f} rad): score {:.2f}, margin {:.1f} m over "
+               "{} hypotheses, {:.1f} m of walls",
+               entity_id, pose.x_m, pose.y_m, pose.theta_rad, best, placement.margin_m,
+               placement.hypotheses.size(), placement.local_length_m);
+  SendPlacement(entity_id, 1.0, 0);
+}
+
+void FusionService::SendPlacement(const std::string& entity_id, double confidence,
+                                  std::uint64_t reference_seq) {
   const fusion::EntityStatus* status = store_->state().entity(entity_id);
   if (status == nullptr || !status->map_from_entity) return;
-  last = now_ns;
-  Correct(entity_id, sample);
-  stats_.Add("correction_attempts");
-  stats_.Add("correction_compute_us", (NowNs() - now_ns) / 1000);
-}
-
-fusion::CorrectionFilter& FusionService::FilterOf(const std::string& entity_id) {
-  auto it = correction_filters_.find(entity_id);
-  if (it == correction_filters_.end()) {
-    const bool robot = is_robot_.count(entity_id) != 0 && is_robot_.at(entity_id);
-    it = correction_filters_
-             .emplace(entity_id, fusion::CorrectionFilter(robot ? options_.robot_filter
-                                                                 : options_.human_filter))
-             .first;
-  }
-  return it->second;
-}
-
-geometry::Pose2 FusionService::ExpectedPose(const std::string& entity_id,
-                                           const pena_dds::ReferenceScan& sample) const {
-  // The pose the entity will hold once it applied what was sent (a scan taken before the last
-  // correction arrived still carries the old one: blending against it would undo that one).
-  const auto sent = map_from_odom_sent_.find(entity_id);
-  if (options_.filter_corrections && sent != map_from_odom_sent_.end()) {
-    return geometry::Compose(sent->second, services::FromDds(sample.odom_from_body()));
-  }
-  return services::FromDds(sample.world_from_body());
-}
-
-void FusionService::Correct(const std::string& entity_id, const pena_dds::ReferenceScan& sample) {
-  fusion::CorrectionFilter& filter = FilterOf(entity_id);
-  const geometry::Pose2 entity_from_body = ExpectedPose(entity_id, sample);
-  const geometry::Pose2 map_from_entity = *store_->state().entity(entity_id)->map_from_entity;
-  const geometry::Pose2 predicted = geometry::Compose(map_from_entity, entity_from_body);
-  fusion::CorrectionOptions options = options_.correction;
-  // Section 4.2's window, sized to the prediction's uncertainty: a drifted entity searches wide,
-  // one just corrected searches narrowly (fewer aliased junctions within reach).
-  options.window = options_.filter_corrections ? filter.Window(options_.correction.window)
-                                               : fusion::CorrectionOptions{}.window;
-  const fusion::FusionCorrection match =
-      fusion::ComputeCorrection(entity_id, services::FromDds(sample), entity_from_body,
-                                map_from_entity, store_->state().CorrectionMap(entity_id), options);
-  if (!match.accepted) {
-    stats_.Add("corrections_rejected");
-    spdlog::debug("{}: no correction at reference {}: {}", entity_id, sample.seq(), match.reason);
-    return;
-  }
-  geometry::Pose2 corrected = match.matched_map_from_body;
-  if (options_.filter_corrections) {
-    const fusion::FilteredCorrection filtered = filter.Update(predicted, match);
-    if (filtered.degenerate) stats_.Add("corrections_degenerate");
-    if (!filtered.accepted) {
-      stats_.Add("corrections_gated");
-      spdlog::debug("{}: correction at reference {} refused: {}", entity_id, sample.seq(),
-                    filtered.reason);
-      return;
-    }
-    corrected = filtered.map_from_body;
-  }
-  const geometry::Pose2 move = geometry::Between(predicted, corrected);
-  // Raw corrections below the minimum are not sent; filtered ones always are, because the
-  // filter has counted them as applied.
-  if (!options_.filter_corrections && std::hypot(move.x_m, move.y_m) < options_.correction_min_m &&
-      std::abs(move.theta_rad) < options_.correction_min_rad) {
-    stats_.Add("corrections_small");
-    return;
-  }
-  spdlog::info("{}: correction at reference {} moves it ({:.3f} m, {:.3f} m, {:.4f} rad), "
-               "score {:.2f}, confidence {:.2f}",
-               entity_id, sample.seq(), move.x_m, move.y_m, move.theta_rad, match.score,
-               match.confidence);
-  Deliver(entity_id, sample, map_from_entity, corrected, match.confidence);
-}
-
-void FusionService::Deliver(const std::string& entity_id, const pena_dds::ReferenceScan& sample,
-                            const geometry::Pose2& map_from_entity,
-                            const geometry::Pose2& corrected, double confidence) {
-  if (IsIdentity(map_from_entity)) {
-    // The entity corrects its own frame, so its later walls arrive corrected: the fusion keeps
-    // map_from_entity = I (docs/fusion.md, "Contract with the entity").
-    pipeline::Correction correction;
-    correction.kind = pipeline::Correction::Kind::kPose;
-    correction.stamp_s = sample.stamp_s();
-    correction.world_from_body = corrected;
-    correction.confidence = confidence;
-    SendCorrection(entity_id, correction, sample.seq());
-    // The entity solves world_from_body = map_from_odom * odom_from_body at the stamp.
-    map_from_odom_sent_[entity_id] =
-        geometry::Compose(corrected, geometry::Inverse(services::FromDds(sample.odom_from_body())));
-  } else {
-    // A placed entity keeps its own frame: the fusion moves its walls instead (journaled).
-    const geometry::Pose2 entity_from_body = services::FromDds(sample.world_from_body());
-    Apply(fusion::AlignmentCorrection{
-        NowS(), entity_id, geometry::Compose(corrected, geometry::Inverse(entity_from_body)),
-        confidence});
-  }
+  // The entity's pipeline runs in its own frame with map_from_odom = I, so the frame it needs
+  // is map_from_entity itself; it applies it to the poses it publishes, not to its map.
+  pipeline::Correction correction;
+  correction.kind = pipeline::Correction::Kind::kMapFromOdom;
+  correction.map_from_odom = *status->map_from_entity;
+  correction.confidence = confidence;
+  SendCorrection(entity_id, correction, reference_seq, store_->state().global_version());
+  placement_sent_[entity_id] = true;
 }
 
 }  // namespace pena::services

@@ -56,9 +56,17 @@ void FusionService::Dispatch(const Event& event) {
   }
 }
 
-void FusionService::EnsureJoined(const std::string& entity_id, const SampleMeta& meta) {
+void FusionService::EnsureJoined(const std::string& entity_id, const SampleMeta& meta,
+                                 bool start_unknown) {
   entity_of_participant_[ParticipantOf(meta.publication)] = entity_id;
   if (store_->state().entity(entity_id) != nullptr) return;
+  if (start_unknown) {
+    // Its local map is in its own frame: placement (PlaceLocalMap) finds map_from_entity.
+    spdlog::info("{}: start unknown; placed by matching its local map to the global map",
+                 entity_id);
+    Apply(fusion::EntityJoin{NowS(), entity_id, std::nullopt});
+    return;
+  }
   // The entity's local map is in the mission frame its known start gives: map_from_entity = I.
   Apply(fusion::EntityJoin{NowS(), entity_id, geometry::Pose2{}});
 }
@@ -78,8 +86,15 @@ void FusionService::Handle(const pena_dds::EntityStatus& sample, const SampleMet
   const std::string entity_id = sample.entity_id().to_string();
   stats_.Count("received", topics::kStatus.name, entity_id,
                SizeOf<pena_dds::EntityStatusPubSubType>(sample));
-  EnsureJoined(entity_id, meta);
-  is_robot_[entity_id] = sample.kind() == pena_dds::ENTITY_ROBOT;
+  const bool start_unknown = sample.start_unknown();
+  EnsureJoined(entity_id, meta, start_unknown);
+  start_unknown_[entity_id] = start_unknown;
+  if (corrections_) {
+    corrections_->SetEntity(entity_id, sample.kind() == pena_dds::ENTITY_ROBOT, start_unknown);
+  }
+  // A placement made before a restart of the fusion (or before the entity listened): told once
+  // per run.
+  if (start_unknown && !placement_sent_[entity_id]) SendPlacement(entity_id, 1.0, 0);
   const fusion::EntityStatus* status = store_->state().entity(entity_id);
   const bool left = status != nullptr && status->lifecycle == fusion::EntityLifecycle::kLeft;
   if (sample.state() == pena_dds::ENTITY_FINISHED || sample.state() == pena_dds::ENTITY_FAILED) {
@@ -100,7 +115,7 @@ void FusionService::Handle(const pena_dds::LineMapDelta& sample, const SampleMet
                SizeOf<pena_dds::LineMapDeltaPubSubType>(sample));
   line_map::MapDelta delta = services::FromDds(sample);
   EnsureJoined(entity_id, meta);
-  Apply(fusion::LocalDelta{NowS(), entity_id, std::move(delta)});
+  AfterPlacement(entity_id, Apply(fusion::LocalDelta{NowS(), entity_id, std::move(delta)}));
 }
 
 void FusionService::Handle(const pena_dds::LineMapSnapshot& sample, const SampleMeta& meta) {
@@ -112,7 +127,7 @@ void FusionService::Handle(const pena_dds::LineMapSnapshot& sample, const Sample
   // Already held (the entity's final snapshot after every delta arrived): nothing to journal.
   const line_map::LineMap& local = store_->state().local_map(entity_id);
   if (local.version() == snapshot.version && line_map::SameMap(local.Snapshot(), snapshot)) return;
-  Apply(fusion::LocalSnapshot{NowS(), entity_id, std::move(snapshot)});
+  AfterPlacement(entity_id, Apply(fusion::LocalSnapshot{NowS(), entity_id, std::move(snapshot)}));
 }
 
 void FusionService::Handle(const pena_dds::OperatorCorrection& sample, const SampleMeta& meta) {
@@ -132,8 +147,8 @@ void FusionService::Handle(const pena_dds::OperatorCorrection& sample, const Sam
   correction.stamp_s = sample.stamp_s();
   correction.world_from_body = services::FromDds(sample.world_from_body());
   correction.confidence = 1.0;
-  SendCorrection(entity_id, correction, 0);
-  map_from_odom_sent_.erase(entity_id);  // the entity's frame is the operator's now
+  SendCorrection(entity_id, correction, 0, store_->state().global_version());
+  if (corrections_) corrections_->Forget(entity_id);  // the entity's frame is the operator's now
   spdlog::info("operator {} set {}'s pose at {:.3f} s; relayed as a correction",
                sample.operator_id().to_string(), entity_id, sample.stamp_s());
 }

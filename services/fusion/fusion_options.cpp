@@ -57,6 +57,9 @@ void ValidateFusionServiceOptions(const FusionServiceOptions& options) {
           "silent_after_s must be > 0 s, got " + std::to_string(options.store.fusion.silent_after_s));
   Require(options.correction_interval_s >= 0.0, "correction_interval_s must be >= 0 s, got " +
                                                      std::to_string(options.correction_interval_s));
+  Require(options.correction_max_wait_s >= 0.0,
+          "correction_max_wait_s must be >= 0 s, got " +
+              std::to_string(options.correction_max_wait_s));
   Require(options.correction_min_m >= 0.0,
           "correction_min_m must be >= 0 m, got " + std::to_string(options.correction_min_m));
   Require(options.correction_min_rad >= 0.0,

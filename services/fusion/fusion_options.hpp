@@ -43,6 +43,10 @@ struct FusionServiceOptions {
   fusion::FusionStoreOptions store;   // silent_after_s, checkpoint_every, merge options
   bool corrections = true;            // match reference scans and send corrections
   double correction_interval_s = 1.0; // wall seconds between attempts per entity
+  // A reference scan that waited longer than this for the correction worker is dropped (the
+  // entity's next one gets the next chance): the 200 ms latency budget minus a match.
+  // Wall seconds; 0 = never dropped.
+  double correction_max_wait_s = 0.15;
   double correction_min_m = 0.03;     // smaller raw corrections are not sent (metres); filtered
                                       // ones always are (the filter counted them as applied)
   double correction_min_rad = 0.01;   // ... (radians)

@@ -46,6 +46,9 @@ FusionService::FusionService(FusionServiceOptions options)
       snapshot_writer_(participant_, topics::kGlobalMapSnapshot),
       correction_writer_(participant_, topics::kCorrection),
       sync_writer_(participant_, topics::kSyncRequest),
+      corrections_(options_.corrections
+                       ? std::make_unique<CorrectionWorker>(options_, stats_, Sinks())
+                       : nullptr),
       pose_reader_(participant_, topics::kPose, Enqueue<pena_dds::EntityPosePubSubType>("pose")),
       status_reader_(participant_, topics::kStatus,
                      Enqueue<pena_dds::EntityStatusPubSubType>("status"),
@@ -57,7 +60,9 @@ FusionService::FusionService(FusionServiceOptions options)
       snapshot_reader_(participant_, topics::kLineMapSnapshot,
                        Enqueue<pena_dds::LineMapSnapshotPubSubType>("line_map_snapshot")),
       scan_reader_(participant_, topics::kReferenceScan,
-                   Enqueue<pena_dds::ReferenceScanPubSubType>("reference_scan")),
+                   [this](pena_dds::ReferenceScan&& sample, const SampleMeta&) {
+                     OnReferenceScan(sample);
+                   }),
       sync_reader_(participant_, topics::kSyncRequest,
                    Enqueue<pena_dds::SyncRequestPubSubType>("sync_request")) {
   CreateOperatorEndpoints();
@@ -114,6 +119,7 @@ void FusionService::Startup() {
   }
   // A restarted fusion republishes its map at once; entities resynchronise by version.
   PublishSnapshot();
+  RefreshCorrectionContext();
   next_tick_ns_ = NowNs() + SecondsToNs(options_.tick_period_s);
 }
 
@@ -123,6 +129,7 @@ FusionRunSummary FusionService::Run() {
     if (std::optional<Event> event = inbox_.PopFor(kPoll)) Dispatch(*event);
     Periodic();
   }
+  if (corrections_) corrections_->Stop();
   spdlog::info("stopping ({}): {} events still queued are dropped; the entities' durable "
                "samples are received again at the next start",
                StopSignal() != 0 ? "signal " + std::to_string(StopSignal()) : "requested",
@@ -146,6 +153,11 @@ void FusionService::Periodic() {
     Apply(fusion::Tick{NowS()});
   }
   if (snapshot_dirty_ && now_ns >= next_snapshot_ns_) PublishSnapshot();
+  // The correction worker's copy follows every change, but at most every 100 ms while samples
+  // are queued (a burst of deltas rebuilds the map many times).
+  if (context_dirty_ && (inbox_.size() == 0 || now_ns - context_refreshed_ns_ > 100'000'000)) {
+    RefreshCorrectionContext();
+  }
 }
 
 fusion::FusionOutput FusionService::Apply(const fusion::FusionInput& input) {
@@ -164,9 +176,11 @@ fusion::FusionOutput FusionService::Apply(const fusion::FusionInput& input) {
                    fusion::ToString(change.to));
     }
   }
-  if (output.placement && output.placement->placed) {
-    spdlog::info("placed an entity: margin {:.1f} m over {} hypotheses", output.placement->margin_m,
-                 output.placement->hypotheses.size());
+  // The correction worker needs the new walls or alignments.
+  if (output.global_delta || output.placement ||
+      std::holds_alternative<fusion::EntityJoin>(input) ||
+      std::holds_alternative<fusion::AlignmentCorrection>(input)) {
+    context_dirty_ = true;
   }
   if (output.global_delta) PublishDelta(*output.global_delta);
   if (output.snapshot_request) RequestEntitySnapshot(*output.snapshot_request);
@@ -231,9 +245,10 @@ void FusionService::RequestEntitySnapshot(const std::string& entity_id) {
 
 void FusionService::SendCorrection(const std::string& entity_id,
                                    const pipeline::Correction& correction,
-                                   std::uint64_t reference_seq) {
+                                   std::uint64_t reference_seq, std::uint64_t for_version) {
+  const std::lock_guard<std::mutex> lock(send_mutex_);
   pena_dds::Correction sample = ToDdsCorrection(correction, entity_id, ++correction_seq_[entity_id],
-                                                store_->state().global_version(), reference_seq);
+                                                for_version, reference_seq);
   if (!correction_writer_.Write(sample)) spdlog::warn("DDS refused a correction for {}", entity_id);
   stats_.Count("sent", topics::kCorrection.name, entity_id,
                pena_dds::CorrectionPubSubType().getSerializedSizeProvider(&sample)());

@@ -2,13 +2,16 @@
 // pena-fusion's application class: a thin DDS adapter over libpena's fusion::FusionStore. The
 // constructor opens (and recovers) the state directory and creates the participant, writers and
 // readers from the XML profiles (throws on failure). Listener callbacks only take samples and
-// enqueue them; Run() is the one worker that owns the store: it turns samples into fusion inputs
-// (journaled before they are applied), publishes global-map deltas and snapshots, computes and
-// sends corrections at reference scans, relays annotations, and watches entities' lifecycles.
+// enqueue them; Run() is the fusion worker that owns the store: it turns samples into fusion
+// inputs (journaled before they are applied), publishes global-map deltas and snapshots, places
+// entities whose start is unknown, relays annotations, and watches entities' lifecycles.
+// Reference scans go to the second worker, CorrectionWorker (correction_worker.hpp), which
+// matches them against a copy of the global map the fusion worker hands it after every change.
 
 #include <cstdint>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +19,7 @@
 
 #include "dds_endpoints.hpp"
 #include "dds_participant.hpp"
+#include "correction_worker.hpp"
 #include "fusion_options.hpp"
 #include "fusion_stats.hpp"
 #include "pena/fusion/correction_filter.hpp"
@@ -55,11 +59,19 @@ class FusionService {
   FusionRunSummary Run();
 
  private:
-  // What the listeners hand to the worker, with the middleware's metadata.
+  // The correction worker asks to move a placed entity's alignment (journaled here).
+  struct Realign {
+    std::string entity_id;
+    geometry::Pose2 map_from_entity;
+    double confidence = 0.0;
+    std::uint64_t reference_seq = 0;
+  };
+  // What the listeners (and the correction worker) hand to the worker, with the middleware's
+  // metadata.
   using Sample = std::variant<pena_dds::EntityPose, pena_dds::EntityStatus,
                               pena_dds::LineMapDelta, pena_dds::LineMapSnapshot,
-                              pena_dds::ReferenceScan, pena_dds::OperatorCorrection,
-                              pena_dds::Annotation, pena_dds::SyncRequest, LivelinessChange>;
+                              pena_dds::OperatorCorrection, pena_dds::Annotation,
+                              pena_dds::SyncRequest, LivelinessChange, Realign>;
   struct Event {
     Sample sample;
     SampleMeta meta;
@@ -74,33 +86,36 @@ class FusionService {
   void Handle(const pena_dds::EntityStatus& sample, const SampleMeta& meta);
   void Handle(const pena_dds::LineMapDelta& sample, const SampleMeta& meta);
   void Handle(const pena_dds::LineMapSnapshot& sample, const SampleMeta& meta);
-  void Handle(const pena_dds::ReferenceScan& sample, const SampleMeta& meta);
   void Handle(const pena_dds::OperatorCorrection& sample, const SampleMeta& meta);
   void Handle(const pena_dds::Annotation& sample, const SampleMeta& meta);
   void Handle(const pena_dds::SyncRequest& sample, const SampleMeta& meta);
   void Handle(const LivelinessChange& change, const SampleMeta& meta);
-  // Matches a reference scan against the global map and sends the (filtered) correction.
-  void Correct(const std::string& entity_id, const pena_dds::ReferenceScan& sample);
-  // The scan's body pose in the entity's frame with the last correction sent applied.
-  geometry::Pose2 ExpectedPose(const std::string& entity_id,
-                               const pena_dds::ReferenceScan& sample) const;
-  // Sends the corrected pose to the entity, or moves a placed entity's alignment.
-  void Deliver(const std::string& entity_id, const pena_dds::ReferenceScan& sample,
-               const geometry::Pose2& map_from_entity, const geometry::Pose2& corrected,
-               double confidence);
-  // The entity's correction filter (created with its kind's options on first use).
-  fusion::CorrectionFilter& FilterOf(const std::string& entity_id);
+  void Handle(const Realign& request, const SampleMeta& meta);
+  // The reference-scan listener: counts the sample and offers it to the correction worker.
+  void OnReferenceScan(const pena_dds::ReferenceScan& sample);
+  // The correction worker's sinks (called on its thread).
+  CorrectionSinks Sinks();
+  // After a change of the global map or of an alignment: a new context for the correction
+  // worker.
+  void RefreshCorrectionContext();
+  // An entity whose start was unknown: log the placement attempt; once placed, tell the entity.
+  void AfterPlacement(const std::string& entity_id, const fusion::FusionOutput& output);
+  // Sends a placed entity (start unknown) its frame: CORRECTION_MAP_FROM_ODOM = map_from_entity.
+  void SendPlacement(const std::string& entity_id, double confidence, std::uint64_t reference_seq);
 
   // Feeds one input to the store and acts on its output.
   fusion::FusionOutput Apply(const fusion::FusionInput& input);
-  // Makes sure the fusion knows `entity_id` (joins it at the identity: the entity's local map
-  // is in the mission frame its known start pose gives) and remembers its participant.
-  void EnsureJoined(const std::string& entity_id, const SampleMeta& meta);
+  // Makes sure the fusion knows `entity_id` and remembers its participant. An entity with a
+  // known start joins at the identity (its local map is in the mission frame its start gives);
+  // one whose status says its start is unknown joins unplaced (placement finds its frame).
+  void EnsureJoined(const std::string& entity_id, const SampleMeta& meta,
+                    bool start_unknown = false);
   void PublishDelta(const line_map::MapDelta& delta);
   void PublishSnapshot();
   void RequestEntitySnapshot(const std::string& entity_id);
+  // Any thread (the correction worker sends too).
   void SendCorrection(const std::string& entity_id, const pipeline::Correction& correction,
-                      std::uint64_t reference_seq);
+                      std::uint64_t reference_seq, std::uint64_t for_version);
   void Periodic();
   void WriteOutputs() const;
   bool FromSelf(const SampleMeta& meta) const;
@@ -112,12 +127,13 @@ class FusionService {
   FusionRunSummary summary_;
   std::ofstream versions_log_;
   std::map<std::string, std::string> entity_of_participant_;  // GUID prefix bytes -> entity id
-  std::map<std::string, std::int64_t> last_correction_ns_;
   std::map<std::string, std::int64_t> last_sync_request_ns_;
+  std::mutex send_mutex_;  // correction_seq_, the correction writer, summary_.corrections_sent
   std::map<std::string, std::uint64_t> correction_seq_;
-  std::map<std::string, bool> is_robot_;  // from the entities' status
-  std::map<std::string, fusion::CorrectionFilter> correction_filters_;
-  std::map<std::string, geometry::Pose2> map_from_odom_sent_;  // what the last correction set
+  std::map<std::string, bool> start_unknown_;    // from the entities' status
+  std::map<std::string, bool> placement_sent_;   // this run told the entity its frame
+  bool context_dirty_ = true;
+  std::int64_t context_refreshed_ns_ = 0;
   std::map<std::string, std::int64_t> annotation_ids_;  // DDS annotation_id -> fusion id
   bool snapshot_dirty_ = true;
   std::int64_t next_snapshot_ns_ = 0;
@@ -130,6 +146,8 @@ class FusionService {
   Writer<pena_dds::GlobalMapSnapshotPubSubType> snapshot_writer_;
   Writer<pena_dds::CorrectionPubSubType> correction_writer_;
   Writer<pena_dds::SyncRequestPubSubType> sync_writer_;
+  // After the writers its sinks use, before the readers that feed it (destroyed in between).
+  std::unique_ptr<CorrectionWorker> corrections_;
   Reader<pena_dds::EntityPosePubSubType> pose_reader_;
   Reader<pena_dds::EntityStatusPubSubType> status_reader_;
   Reader<pena_dds::LineMapDeltaPubSubType> delta_reader_;

@@ -39,6 +39,7 @@ double Quantile(std::vector<double> values, double q) {
 
 void FusionStats::Count(const std::string& direction, const std::string& topic,
                         const std::string& entity, std::uint32_t bytes) {
+  const std::lock_guard<std::mutex> lock(mutex_);
   TrafficCount& count = traffic_[{direction, topic, entity}];
   ++count.samples;
   count.bytes += bytes;
@@ -47,6 +48,7 @@ void FusionStats::Count(const std::string& direction, const std::string& topic,
 void FusionStats::Pose(const std::string& entity, double latency_s, double stamp_s,
                        const geometry::Pose2& world_from_body,
                        const geometry::Pose2& odom_from_body) {
+  const std::lock_guard<std::mutex> lock(mutex_);
   latency_s_[entity].push_back(latency_s);
   geometry::Trajectory& world = world_[entity];
   // Best effort poses arrive in order; a repeated stamp (a restarted entity) is skipped.
@@ -56,6 +58,7 @@ void FusionStats::Pose(const std::string& entity, double latency_s, double stamp
 }
 
 void FusionStats::Write(const std::filesystem::path& dir, double wall_s) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
   std::filesystem::create_directories(dir / "poses");
   for (const auto& [entity, trajectory] : world_) {
     io::WriteTum(dir / "poses" / (entity + "_world.tum"), trajectory);

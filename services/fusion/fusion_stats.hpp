@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -22,6 +23,7 @@ struct TrafficCount {
   std::uint64_t bytes = 0;  // serialised CDR size (payload as sent on the wire, without RTPS headers)
 };
 
+// Thread-safe: the fusion worker and the correction worker both count.
 class FusionStats {
  public:
   // Counts one sample; `direction` "received" or "sent"; entity "" for broadcast topics.
@@ -31,7 +33,10 @@ class FusionStats {
   void Pose(const std::string& entity, double latency_s, double stamp_s,
             const geometry::Pose2& world_from_body, const geometry::Pose2& odom_from_body);
   // Free counters ("corrections_sent", "corrections_rejected", ...).
-  void Add(const std::string& counter, long value = 1) { counters_[counter] += value; }
+  void Add(const std::string& counter, long value = 1) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    counters_[counter] += value;
+  }
 
   // Writes `dir`/fusion_stats.json and `dir`/poses/<entity>_{world,odom}.tum.
   // Also writes traffic.csv (direction,topic,entity,samples,bytes) and pose_latency.csv
@@ -41,6 +46,7 @@ class FusionStats {
  private:
   void WriteCsvs(const std::filesystem::path& dir) const;
 
+  mutable std::mutex mutex_;
   std::map<std::tuple<std::string, std::string, std::string>, TrafficCount> traffic_;
   std::map<std::string, std::vector<double>> latency_s_;
   std::map<std::string, geometry::Trajectory> world_;

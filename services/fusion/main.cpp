@@ -27,6 +27,7 @@ struct Overrides {
   bool no_corrections = false;
   bool raw_corrections = false;
   std::optional<double> correction_interval_s;
+  std::optional<double> correction_max_wait_s;
 };
 
 void AddOptions(CLI::App& app, Overrides& o) {
@@ -39,6 +40,8 @@ void AddOptions(CLI::App& app, Overrides& o) {
                "Send the raw match instead of blending it with the entity's uncertainty");
   app.add_option("--correction-interval", o.correction_interval_s,
                  "Wall seconds between correction attempts per entity");
+  app.add_option("--correction-max-wait", o.correction_max_wait_s,
+                 "Drop a reference scan that waited longer than this (wall s; 0 = never)");
   app.add_option("--domain", o.domain_id, "DDS domain id (0..232)");
   app.add_option("--profile", o.participant_profile, "Participant profile (default pena_loopback)");
   app.add_option("--profiles-file", o.profiles_files, "DDS XML profile file (repeatable)");
@@ -57,6 +60,7 @@ FusionServiceOptions BuildOptions(const Overrides& o) {
   if (o.no_corrections) options.corrections = false;
   if (o.raw_corrections) options.filter_corrections = false;
   if (o.correction_interval_s) options.correction_interval_s = *o.correction_interval_s;
+  if (o.correction_max_wait_s) options.correction_max_wait_s = *o.correction_max_wait_s;
   if (o.domain_id) options.dds.domain_id = *o.domain_id;
   if (!o.participant_profile.empty()) options.dds.participant_profile = o.participant_profile;
   if (!o.profiles_files.empty()) {

@@ -22,7 +22,7 @@ struct TwoEntities {
   FusionState fusion;
   line_map::LineMap ff1_map, ff2_map;
   const geometry::Pose2 ff2_start{10.0, 0.0, 0.0};  // ff2's frame starts 10 m along x
-  TwoEntities() {
+  explicit TwoEntities(const FusionOptions& options = {}) : fusion(options) {
     fusion.Handle(EntityJoin{0.0, "ff1", geometry::Pose2{}});
     fusion.Handle(EntityJoin{0.0, "ff2", ff2_start});
   }
@@ -124,7 +124,11 @@ TEST(GlobalMap, WithholdsALoneDottedWallUntilAnotherEntityCorroboratesIt) {
 }
 
 TEST(GlobalMap, LeavesOutALoneDriftedCopyOfACorroboratedWall) {
-  TwoEntities team;
+  // The copy alone is judged here: ff1's agreement (8 m of 14 m) would also withhold its lone
+  // wall (WithholdsTheLoneWallsOfAnEntityThatDisagreesWithTheOthers).
+  FusionOptions lenient;
+  lenient.global.min_lone_agreement = 0.0;
+  TwoEntities team(lenient);
   // Both see y = 2 (x 0..14 in the map); ff1 also saw it 0.4 m off from a drifted pose, and a
   // real wall 2 m away that nobody else saw.
   team.fusion.Handle(LocalDelta{
@@ -137,7 +141,7 @@ TEST(GlobalMap, LeavesOutALoneDriftedCopyOfACorroboratedWall) {
     EXPECT_GT(std::abs(wall.segment.start_m.y() - 2.4), 0.1) << "the drifted copy is out";
   }
   // With the rule off the copy is published.
-  FusionOptions options;
+  FusionOptions options = lenient;
   options.global.lone_duplicate_distance_m = 0.0;
   FusionState off(options);
   off.Handle(EntityJoin{0.0, "ff1", geometry::Pose2{}});
@@ -148,6 +152,78 @@ TEST(GlobalMap, LeavesOutALoneDriftedCopyOfACorroboratedWall) {
       ff1_again.Integrate({Wall(0, 2, 8, 2), Wall(1, 2.4, 7, 2.4), Wall(0, 4, 8, 4)}, "ff1")});
   off.Handle(LocalDelta{2.0, "ff2", ff2_again.Integrate({Wall(-5, 2, 4, 2)}, "ff2")});
   EXPECT_EQ(off.GlobalSnapshot().segments.size(), 3u);
+}
+
+TEST(GlobalMap, WithholdsTheLoneWallsOfAnEntityThatDisagreesWithTheOthers) {
+  // ff1 drifted: of its walls along y = 2, which ff2 also saw, 8 m merged and 6 m are a copy
+  // 0.4 m off. Its wall at y = 4 nobody else saw is as suspect. ff2's walls agree (12 m of 12 m):
+  // its lone wall at y = -3 is published.
+  const auto run = [](const FusionOptions& options) {
+    TwoEntities team(options);
+    team.fusion.Handle(LocalDelta{
+        1.0, "ff1",
+        team.ff1_map.Integrate({Wall(0, 2, 8, 2), Wall(1, 2.4, 7, 2.4), Wall(0, 4, 8, 4)}, "ff1")});
+    team.fusion.Handle(LocalDelta{
+        2.0, "ff2", team.ff2_map.Integrate({Wall(-10, 2, 2, 2), Wall(-10, -3, -4, -3)}, "ff2")});
+    return team.fusion.GlobalSnapshot();
+  };
+  const auto at_y = [](const line_map::MapSnapshot& map, double y) {
+    return std::count_if(map.segments.begin(), map.segments.end(), [y](const auto& s) {
+      return std::abs(s.segment.start_m.y() - y) < 0.05 && std::abs(s.segment.end_m.y() - y) < 0.05;
+    });
+  };
+  const line_map::MapSnapshot judged = run(FusionOptions{});
+  EXPECT_EQ(at_y(judged, 2.0), 1);
+  EXPECT_EQ(at_y(judged, 2.4), 0) << "the drifted copy";
+  EXPECT_EQ(at_y(judged, 4.0), 0) << "ff1's lone wall, withheld";
+  EXPECT_EQ(at_y(judged, -3.0), 1) << "ff2's lone wall, published";
+  // The agreement behind it.
+  GlobalMap global;
+  line_map::LineMap ff1_map, ff2_map;
+  ff1_map.Integrate({Wall(0, 2, 8, 2), Wall(1, 2.4, 7, 2.4), Wall(0, 4, 8, 4)}, "ff1");
+  ff2_map.Integrate({Wall(0, 2, 12, 2), Wall(0, -3, 6, -3)}, "ff2");
+  global.Rebuild({{"ff1", ff1_map.segments()}, {"ff2", ff2_map.segments()}});
+  ASSERT_EQ(global.agreement().size(), 2u);
+  EXPECT_NEAR(global.agreement().at("ff1").agree_m, 8.0, 1e-6);
+  EXPECT_NEAR(global.agreement().at("ff1").disagree_m, 6.0, 1e-6);
+  EXPECT_NEAR(global.agreement().at("ff2").ratio(), 1.0, 1e-9);
+  // With the rule off ff1's lone wall is published; with too little compared it is too.
+  FusionOptions off;
+  off.global.min_lone_agreement = 0.0;
+  EXPECT_EQ(at_y(run(off), 4.0), 1);
+  FusionOptions little;
+  little.global.min_agreement_evidence_m = 20.0;
+  EXPECT_EQ(at_y(run(little), 4.0), 1);
+  FusionOptions bad;
+  bad.global.min_lone_agreement = 1.5;
+  EXPECT_THROW(FusionState{bad}, std::invalid_argument);
+}
+
+TEST(GlobalMap, WithholdsAWallTwoUntrustedEntitiesSawAlongAPlanWallTheyDoNotConfirm) {
+  // Plan walls y = 0 and y = 5. ff1 and ff2 each confirm y = 0 but also left a copy of it
+  // 0.4 m off (agreement 20 m of 28 m: untrusted). Both saw y = 5 at 5.2, drifted alike.
+  const auto run = [](const FusionOptions& options) {
+    FusionState fusion(options);
+    std::vector<line_map::LineSegment> plan = {Wall(0, 0, 10, 0, 0), Wall(0, 5, 10, 5, 0)};
+    plan[0].id = 1;
+    plan[1].id = 2;
+    fusion.Handle(SetPlan{0.0, plan});
+    for (const auto& [id, copy_y] : {std::pair{"ff1", 0.4}, std::pair{"ff2", -0.4}}) {
+      fusion.Handle(EntityJoin{0.0, id, geometry::Pose2{}});
+      line_map::LineMap local;
+      fusion.Handle(LocalDelta{
+          1.0, id,
+          local.Integrate({Wall(0, 0, 10, 0), Wall(1, copy_y, 9, copy_y), Wall(0, 5.2, 10, 5.2)}, id)});
+    }
+    const line_map::MapSnapshot map = fusion.GlobalSnapshot();
+    return std::count_if(map.segments.begin(), map.segments.end(), [](const auto& s) {
+      return std::abs(s.segment.start_m.y() - 5.2) < 0.05 && s.provenance.size() >= 2;
+    });
+  };
+  EXPECT_EQ(run(FusionOptions{}), 0);
+  FusionOptions off;
+  off.global.min_lone_agreement = 0.0;
+  EXPECT_EQ(run(off), 1);
 }
 
 TEST(GlobalMap, LaysThePlanUnderTheObservationsAndKeepsItsUnseenParts) {

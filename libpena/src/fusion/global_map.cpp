@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <stdexcept>
 #include <tuple>
 #include <unordered_map>
 
+#include "lone_walls.hpp"
 #include "plan_overlay.hpp"
 
 namespace pena::fusion {
@@ -70,72 +70,33 @@ std::vector<std::int64_t> MatchIds(const std::vector<LineSegment>& fresh,
   return ids;
 }
 
-// True for a wall that a single entity saw, with fewer occupied cells per metre than asked.
-bool LoneAndWeak(const LineSegment& segment, const GlobalMapOptions& options) {
-  const std::string& first = segment.provenance.front();
-  const std::string source = first.substr(0, first.rfind(':') + 1);
-  const bool lone = source != "plan:" && std::all_of(segment.provenance.begin(), segment.provenance.end(),
-                                                     [&source](const std::string& key) {
-                                                       return key.compare(0, source.size(), source) == 0;
-                                                     });
-  return lone && segment.support_cells <
-                     options.min_lone_support_per_m * geometry::Length(segment.segment);
-}
-
-// The entity sources ("ff1") of a segment's provenance, and whether the plan is among them.
-std::pair<std::set<std::string>, bool> SourcesOf(const LineSegment& segment) {
-  std::set<std::string> entities;
-  bool plan = false;
-  for (const std::string& key : segment.provenance) {
-    const std::string source = key.substr(0, key.rfind(':'));
-    if (source == "plan") {
-      plan = true;
-    } else {
-      entities.insert(source);
+// Each source segment's length by provenance key.
+std::unordered_map<std::string, double> LengthByKey(const std::vector<MergeSource>& sources) {
+  std::unordered_map<std::string, double> lengths;
+  for (const MergeSource& source : sources) {
+    for (const LineSegment& segment : source.segments) {
+      lengths[ProvenanceKey(source.name, segment.id)] = geometry::Length(segment.segment);
     }
   }
-  return {entities, plan};
+  return lengths;
 }
 
-// True if `lone` lies along `wall`: parallel, its midpoint within `distance_m` of the wall's
-// line, and at least half of it overlapping the wall.
-bool Shadowed(const geometry::Segment2& lone, const geometry::Segment2& wall, double angle_rad,
-              double distance_m) {
-  const Eigen::Vector2d u = lone.end_m - lone.start_m;
-  const Eigen::Vector2d v = wall.end_m - wall.start_m;
-  const double lone_m = u.norm();
-  const double wall_m = v.norm();
-  if (lone_m <= 0.0 || wall_m <= 0.0) return false;
-  const Eigen::Vector2d along = v / wall_m;
-  if (std::abs(along.x() * u.y() - along.y() * u.x()) / lone_m > std::sin(angle_rad)) return false;
-  const Eigen::Vector2d mid = 0.5 * (lone.start_m + lone.end_m) - wall.start_m;
-  if (std::abs(along.x() * mid.y() - along.y() * mid.x()) > distance_m) return false;
-  const double t1 = (lone.start_m - wall.start_m).dot(along);
-  const double t2 = (lone.end_m - wall.start_m).dot(along);
-  const double overlap_m = std::min(wall_m, std::max(t1, t2)) - std::max(0.0, std::min(t1, t2));
-  return overlap_m >= 0.5 * lone_m;
-}
-
-// Drops walls a single entity saw that duplicate a corroborated wall (lone_duplicate_distance_m).
-void DropLoneDuplicates(std::vector<LineSegment>& fresh, const GlobalMapOptions& options) {
-  if (options.lone_duplicate_distance_m <= 0.0) return;
-  std::vector<const geometry::Segment2*> corroborated;
-  std::vector<bool> lone(fresh.size(), false);
-  for (std::size_t i = 0; i < fresh.size(); ++i) {
-    const auto [entities, plan] = SourcesOf(fresh[i]);
-    if (entities.size() >= 2 || (plan && !entities.empty())) corroborated.push_back(&fresh[i].segment);
-    lone[i] = entities.size() == 1 && !plan;
+// The plan under the observations (plan_overlay.hpp), in source order: adds the plan keys to the
+// observed walls that confirm a plan wall and returns the uncovered plan pieces.
+std::vector<LineSegment> PlanPieces(const std::vector<MergeSource>& sources,
+                                    std::vector<LineSegment>& observed,
+                                    const GlobalMapOptions& options) {
+  std::vector<LineSegment> pieces;
+  for (const MergeSource& source : sources) {
+    if (!source.plan) continue;
+    for (const LineSegment& wall : source.segments) {
+      for (LineSegment& piece : detail::OverlayPlanWall(wall, ProvenanceKey(source.name, wall.id),
+                                                        observed, options)) {
+        pieces.push_back(std::move(piece));
+      }
+    }
   }
-  std::vector<LineSegment> kept;
-  for (std::size_t i = 0; i < fresh.size(); ++i) {
-    const bool duplicate =
-        lone[i] && std::any_of(corroborated.begin(), corroborated.end(), [&](const auto* wall) {
-          return Shadowed(fresh[i].segment, *wall, options.merge.merge_angle_rad,
-                          options.lone_duplicate_distance_m);
-        });
-    if (!duplicate) kept.push_back(std::move(fresh[i]));
-  }
-  fresh = std::move(kept);
+  return pieces;
 }
 
 }  // namespace
@@ -149,9 +110,15 @@ GlobalMap::GlobalMap(GlobalMapOptions options) : options_(options), published_(o
     throw std::invalid_argument("global_map.min_lone_support_per_m must be >= 0 (cells per metre), got " +
                                 std::to_string(options_.min_lone_support_per_m));
   }
+  if (!(options_.min_lone_agreement >= 0.0 && options_.min_lone_agreement <= 1.0)) {
+    throw std::invalid_argument("global_map.min_lone_agreement must be in [0, 1], got " +
+                                std::to_string(options_.min_lone_agreement));
+  }
   for (const auto& [name, value] : {std::pair{"plan_shadow_m", options_.plan_shadow_m},
                                     std::pair{"lone_duplicate_distance_m",
                                               options_.lone_duplicate_distance_m},
+                                    std::pair{"min_agreement_evidence_m",
+                                              options_.min_agreement_evidence_m},
                                     std::pair{"min_plan_piece_m", options_.min_plan_piece_m}}) {
     if (!std::isfinite(value) || value < 0.0) {
       throw std::invalid_argument(std::string("global_map.") + name + " must be >= 0 (metres), got " +
@@ -176,19 +143,16 @@ line_map::MapSnapshot GlobalMap::Snapshot() const {
 
 line_map::MapDelta GlobalMap::Rebuild(const std::vector<MergeSource>& sources) {
   std::vector<LineSegment> fresh = MergeAll(sources, options_.merge);
-  // The plan goes under the observations (plan_overlay.hpp), in source order.
-  std::vector<LineSegment> plan_pieces;
+  // The plan confirms observed walls (their plan keys) before the lone ones are judged; its
+  // pieces are laid under what is left, so a plan wall is shown where a withheld wall was.
+  PlanPieces(sources, fresh, options_);
+  std::vector<geometry::Segment2> plan;
   for (const MergeSource& source : sources) {
     if (!source.plan) continue;
-    for (const LineSegment& wall : source.segments) {
-      for (LineSegment& piece : detail::OverlayPlanWall(wall, ProvenanceKey(source.name, wall.id),
-                                                        fresh, options_)) {
-        plan_pieces.push_back(std::move(piece));
-      }
-    }
+    for (const LineSegment& wall : source.segments) plan.push_back(wall.segment);
   }
-  std::erase_if(fresh, [this](const LineSegment& segment) { return LoneAndWeak(segment, options_); });
-  DropLoneDuplicates(fresh, options_);
+  agreement_ = detail::DropLoneWalls(fresh, LengthByKey(sources), plan, options_);
+  const std::vector<LineSegment> plan_pieces = PlanPieces(sources, fresh, options_);
   fresh.insert(fresh.end(), plan_pieces.begin(), plan_pieces.end());
   const std::vector<LineSegment> old = published_.segments();
   const std::vector<std::int64_t> ids = MatchIds(fresh, old);

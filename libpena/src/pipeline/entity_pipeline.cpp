@@ -79,20 +79,46 @@ std::optional<ScanStep> EntityPipeline::Add(const sensors::SensorRecord& record)
     odom_history_.pop_front();
   }
   ScanStep step;
+  const auto& scan = std::get<sensors::LaserScan>(record);
+  // Section 4.2: against the plan first, so this scan is already placed where the plan says.
+  std::optional<line_map::MapDelta> reset_delta;
+  if (localiser_) step.plan_round = LocaliseOnPlan(scan, *estimate, reset_delta);
   step.world_from_body = geometry::Compose(map_from_odom_, estimate->world_from_body);
   step.covariance = RotateCovariance(estimate->covariance, map_from_odom_);
   step.odometry = std::move(*estimate);
   last_world_from_body_ = step.world_from_body;
   // Section 3: the scan goes into the local grid at the corrected pose; lines come out of it.
-  step.map_delta = UpdateMap(std::get<sensors::LaserScan>(record), step.world_from_body);
+  // A grid just reset by a plan correction is fresh: nothing to extract at this scan.
+  step.map_delta = UpdateMap(scan, step.world_from_body, !reset_delta);
+  if (reset_delta) step.map_delta = std::move(reset_delta);
   return step;
 }
 
+void EntityPipeline::SetPlan(std::vector<geometry::Segment2> plan_m) {
+  if (plan_m.empty()) throw std::invalid_argument("pipeline: the plan has no segments");
+  localiser_ = std::make_unique<localisation::MapLocaliser>(options_.plan_localisation,
+                                                            std::move(plan_m), map_from_odom_);
+}
+
+std::optional<localisation::MapCorrection> EntityPipeline::LocaliseOnPlan(
+    const sensors::LaserScan& scan, const odometry::OdometryEstimate& estimate,
+    std::optional<line_map::MapDelta>& delta) {
+  std::optional<localisation::MapCorrection> round = localiser_->Update(scan, estimate);
+  if (!round) return round;
+  ++counts_.plan_rounds;
+  if (round->accepted) {
+    ++counts_.plan_corrections;
+    delta = MoveMapFrame(localiser_->map_from_odom());
+  }
+  return round;
+}
+
 std::optional<line_map::MapDelta> EntityPipeline::UpdateMap(
-    const sensors::LaserScan& scan, const geometry::Pose2& world_from_body) {
+    const sensors::LaserScan& scan, const geometry::Pose2& world_from_body, bool may_extract) {
   // The laser sits at the body origin (as in the simulator and the CARMEN logs).
   if (grid_.Insert(scan, world_from_body)) grid_has_scans_ = true;
   if (!last_extraction_pose_) last_extraction_pose_ = world_from_body;
+  if (!may_extract) return std::nullopt;
   std::optional<line_map::MapDelta> delta;
   if (grid_.NeedsRecentre(world_from_body)) {
     delta = ExtractAndIntegrate(grid_.Recentre(world_from_body));
@@ -128,6 +154,8 @@ CorrectionResult EntityPipeline::ApplyCorrection(const Correction& correction) {
     return result;
   }
   result.map_delta = MoveMapFrame(map_from_odom);
+  // The plan localiser goes on from the corrected frame (its next window is the narrow one).
+  if (localiser_) localiser_->Reset(map_from_odom_);
   ++counts_.corrections_applied;
   return result;
 }

@@ -8,12 +8,16 @@
 #include <cstdint>
 #include <deque>
 #include <optional>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "pena/geometry/pose2.hpp"
+#include "pena/geometry/segment2.hpp"
 #include "pena/grid/local_grid.hpp"
 #include "pena/line_map/line_extractor.hpp"
 #include "pena/line_map/line_map.hpp"
+#include "pena/localisation/map_localiser.hpp"
 #include "pena/odometry/laser_odometry.hpp"
 #include "pena/sensors/entity.hpp"
 #include "pena/sensors/record.hpp"
@@ -38,6 +42,9 @@ struct EntityPipelineOptions {
   double grid_reset_jump_rad = 0.035;  // 2 deg
   // Odometry poses remembered for corrections given at a past stamp. Count, >= 1.
   int pose_history = 4096;
+  // Map localisation against an a priori plan (paper section 4.2), used once SetPlan gave one:
+  // a round at every reference change of the odometry; validated by SetPlan.
+  localisation::MapLocaliserOptions plan_localisation;
 };
 
 // Throws std::invalid_argument naming the field and its unit (nested options included).
@@ -49,6 +56,8 @@ struct ScanStep {
   geometry::Pose2 world_from_body;      // map_from_odom * odom_from_body: the best estimate
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // of world_from_body (x, y, theta)
   std::optional<line_map::MapDelta> map_delta;  // the local line map's change, if it changed
+  // The round against the plan at this scan (a plan is set and the reference changed).
+  std::optional<localisation::MapCorrection> plan_round;
 };
 
 // A correction from the fusion service (or an operator).
@@ -87,6 +96,8 @@ struct PipelineCounts {
   long grid_resets = 0;
   long global_deltas_applied = 0;
   long global_deltas_refused = 0;
+  long plan_rounds = 0;       // map-localisation rounds against the plan
+  long plan_corrections = 0;  // of which accepted (they moved map_from_odom)
 };
 
 // The chain of one entity. The odometry frame starts at world_from_start; until a correction
@@ -103,6 +114,14 @@ class EntityPipeline {
   // Extracts the lines of the current window into the line map (end of input); the delta may
   // be empty.
   line_map::MapDelta Flush();
+
+  // Localises against an a priori plan (map frame, metres) from now on: at every reference
+  // change of the odometry the scan is matched against a virtual scan of the plan
+  // (localisation::MapLocaliser) and an accepted round moves map_from_odom, so the scan and the
+  // later ones are placed on the plan. Throws std::invalid_argument for an empty plan or bad
+  // options.plan_localisation.
+  void SetPlan(std::vector<geometry::Segment2> plan_m);
+  bool has_plan() const { return localiser_ != nullptr; }
 
   // Applies a correction (see CorrectionStatus).
   CorrectionResult ApplyCorrection(const Correction& correction);
@@ -126,15 +145,22 @@ class EntityPipeline {
   static const EntityPipelineOptions& Validated(const EntityPipelineOptions& options);
   // Extracts the lines of `image` and integrates them; the delta may be empty.
   line_map::MapDelta ExtractAndIntegrate(const grid::GridImage& image);
-  // Runs the grid and line steps for a scan placed at world_from_body.
+  // Runs the grid and line steps for a scan placed at world_from_body (extraction only if
+  // `may_extract`).
   std::optional<line_map::MapDelta> UpdateMap(const sensors::LaserScan& scan,
-                                              const geometry::Pose2& world_from_body);
+                                              const geometry::Pose2& world_from_body,
+                                              bool may_extract = true);
   // Checks a correction and gives the map_from_odom it asks for.
   CorrectionStatus Resolve(const Correction& correction, geometry::Pose2& map_from_odom) const;
   // Switches to a new map_from_odom; a large move first extracts the grid and starts a new one.
   std::optional<line_map::MapDelta> MoveMapFrame(const geometry::Pose2& map_from_odom);
   // The odometry pose at `stamp_s` (within 1 ms) from the history.
   std::optional<geometry::Pose2> OdomPoseAt(double stamp_s) const;
+  // A round against the plan at a reference change; an accepted one moves the map frame (the
+  // old grid's lines, if it was reset, go to `delta`).
+  std::optional<localisation::MapCorrection> LocaliseOnPlan(
+      const sensors::LaserScan& scan, const odometry::OdometryEstimate& estimate,
+      std::optional<line_map::MapDelta>& delta);
 
   EntityPipelineOptions options_;
   std::string entity_id_;
@@ -147,6 +173,7 @@ class EntityPipeline {
   geometry::Pose2 last_world_from_body_;
   bool grid_has_scans_ = false;
   std::deque<std::pair<double, geometry::Pose2>> odom_history_;  // (stamp_s, odom_from_body)
+  std::unique_ptr<localisation::MapLocaliser> localiser_;  // set by SetPlan
   PipelineCounts counts_;
 };
 
