@@ -18,9 +18,11 @@ function(pena_add_module name)
   pena_set_warnings(pena_${name})
 endfunction()
 
-# pena_add_test(<name> SOURCES ... DEPS ...): one GoogleTest executable per area, discovered by CTest.
+# pena_add_test(<name> [SERIAL] SOURCES ... DEPS ...): one GoogleTest executable per area,
+# discovered by CTest. SERIAL: its tests run alone (multi-process runs whose outcome depends on
+# timing, which a parallel ctest on 2 cores disturbs).
 function(pena_add_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "SERIAL" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE
@@ -28,5 +30,9 @@ function(pena_add_test name)
     PENA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   pena_set_warnings(${name})
   include(GoogleTest)
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+  set(properties TIMEOUT 600)
+  if(ARG_SERIAL)
+    list(APPEND properties RUN_SERIAL TRUE)
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES ${properties})
 endfunction()
