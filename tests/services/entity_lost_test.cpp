@@ -16,6 +16,7 @@
 #include "pena/sim/scenario.hpp"
 #include "pena/sim/simulator.hpp"
 #include "pena_dds/global_mapPubSubTypes.h"
+#include "corridor_scenario.hpp"
 #include "process_support.hpp"
 #include "service_test_support.hpp"
 #include "work_queue.hpp"
@@ -25,20 +26,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// A corridor the robot drives along for about 40 s of mission time.
-constexpr const char* kScenario = R"scn(pena-scenario 1
-name lost_test
-ceiling 2.7
-rect 0 0 24 8
-wall 0 4 5 4
-wall 6 4 13 4
-wall 14 4 24 4
-wall 12 4 12 8
-entity robot1 robot 2 2 0 speed=0.8
-waypoint robot1 22 2
-waypoint robot1 22 1.5
-waypoint robot1 13.5 1.5
-)scn";
+constexpr const char* kScenario = pena::testing::kCorridorScenario;
 
 std::filesystem::path LostMission() {
   static const std::filesystem::path dir = [] {

@@ -21,6 +21,7 @@
 #include "pena/sim/simulator.hpp"
 #include "pena_dds/entityPubSubTypes.h"
 #include "pena_dds/line_mapPubSubTypes.h"
+#include "corridor_scenario.hpp"
 #include "process_support.hpp"
 #include "service_test_support.hpp"
 #include "work_queue.hpp"
@@ -30,20 +31,7 @@ namespace {
 
 using std::chrono::milliseconds;
 
-// A corridor with two rooms; a robot drives 20 m along it (about 160 scans at 4 Hz).
-constexpr const char* kScenario = R"scn(pena-scenario 1
-name services_test
-ceiling 2.7
-rect 0 0 24 8
-wall 0 4 5 4
-wall 6 4 13 4
-wall 14 4 24 4
-wall 12 4 12 8
-entity robot1 robot 2 2 0 speed=0.8
-waypoint robot1 22 2
-waypoint robot1 22 1.5
-waypoint robot1 13.5 1.5
-)scn";
+constexpr const char* kScenario = pena::testing::kCorridorScenario;
 
 struct Mission {
   std::filesystem::path entity_dir;
