@@ -5,7 +5,7 @@
 #
 #   scripts/odometry-sweep.sh [--build DIR] [--work DIR] [--only freiburg|sim|LOGNAME|SCENARIO]
 #                             [--seeds "1 2 3"] [--modes "default no-matching stride-only"]
-#                             [-- extra pena odometry options]
+#                             [-- extra pena odometry options, e.g. --set prior_gate_rad=0]
 #
 # Runs one job at a time (the whole sweep takes a few minutes on one core). Missions are
 # simulated once into WORK/sim and reused. Prints one table row per run.
@@ -54,11 +54,12 @@ run_freiburg() {
   local eval summary
   eval=$("$pena" eval --trajectory "$out/trajectory.tum" --relations "$datasets/freiburg/$1.relations" --json)
   summary=$(cat "$out/summary.json")
-  printf '%-10s %-12s trans %8s +/- %-8s m  rot %7s deg  failed %5s gated %5s  %6sx real time\n' \
+  printf '%-10s %-12s trans %8s +/- %-8s m  rot %7s deg  failed %5s gated %5s stale %4s  %6sx real time\n' \
     "$name" default "$(printf %.3f "$(mean_of translational_error_m "$eval")")" \
     "$(printf %.3f "$(sed -n 's/.*"translational_error_m": {"mean": [-0-9.e]*, "std": \([-0-9.e]*\).*/\1/p' <<<"$eval")")" \
     "$(printf %.2f "$(mean_of rotational_error_deg "$eval")")" \
-    "$(field failed "$summary")" "$(field gated "$summary")" "$(field speed_x_real_time "$summary")"
+    "$(field failed "$summary")" "$(field gated "$summary")" "$(field stale "$summary")" \
+    "$(field speed_x_real_time "$summary")"
 }
 
 run_sim() {

@@ -37,6 +37,7 @@ struct OdometryArgs {
   std::string confirm = "auto";
   bool no_matching = false;
   std::string start;
+  std::vector<std::string> settings;  // --set NAME=VALUE (numeric chain options, for sweeps)
   bool quiet = false;
   io::ReadOptions read;
 };
@@ -73,6 +74,55 @@ geometry::Pose2 ParseStart(const std::string& text) {
     cursor = end + 1;
   }
   return {values[0], values[1], values[2] * std::numbers::pi / 180.0};
+}
+
+// The numeric options --set may change (names as in LaserOdometryOptions).
+std::map<std::string, double*> SettableOptions(odometry::LaserOdometryOptions& o) {
+  return {{"min_score", &o.min_score},
+          {"keyframe_distance_m", &o.keyframe_distance_m},
+          {"keyframe_angle_rad", &o.keyframe_angle_rad},
+          {"keyframe_min_score", &o.keyframe_min_score},
+          {"degenerate_eigen_ratio", &o.degenerate_eigen_ratio},
+          {"reference_fill_spacing_m", &o.reference_fill_spacing_m},
+          {"reference_fill_max_gap_m", &o.reference_fill_max_gap_m},
+          {"reference_fill_max_gap_beams", &o.reference_fill_max_gap_beams},
+          {"prior_gate_rad", &o.prior_gate_rad},
+          {"prior_gate_fraction", &o.prior_gate_fraction},
+          {"prior_gate_fraction_gyro", &o.prior_gate_fraction_gyro},
+          {"prior_gate_m", &o.prior_gate_m},
+          {"stale_repeat_m", &o.stale_repeat_m},
+          {"tilt_max_pitch_rad", &o.tilt_max_pitch_rad},
+          {"tilt_laser_height_m", &o.tilt_laser_height_m},
+          {"tilt_ceiling_height_m", &o.tilt_ceiling_height_m},
+          {"stale_changed_m", &o.stale_changed_m},
+          {"matcher.threshold_m", &o.matcher.threshold_m}};
+}
+
+// Applies --set NAME=VALUE settings; integer options are rounded. Unknown names are errors.
+void ApplySettings(const std::vector<std::string>& settings, odometry::LaserOdometryOptions& o) {
+  std::map<std::string, double*> doubles = SettableOptions(o);
+  const std::map<std::string, int*> ints = {{"local_map_keyframes", &o.local_map_keyframes},
+                                            {"min_match_points", &o.min_match_points},
+                                            {"prior_gate_confirm", &o.prior_gate_confirm},
+                                            {"prior_gate_confirm_gyro", &o.prior_gate_confirm_gyro},
+                                            {"stale_history_scans", &o.stale_history_scans}};
+  for (const std::string& setting : settings) {
+    const std::size_t equals = setting.find('=');
+    const std::string name = setting.substr(0, equals);
+    char* end = nullptr;
+    const double value =
+        equals == std::string::npos ? NAN : std::strtod(setting.c_str() + equals + 1, &end);
+    if (!std::isfinite(value) || end == nullptr || *end != '\0') {
+      throw std::runtime_error("--set: expected NAME=NUMBER, got '" + setting + "'");
+    }
+    if (const auto d = doubles.find(name); d != doubles.end()) {
+      *d->second = value;
+    } else if (const auto i = ints.find(name); i != ints.end()) {
+      *i->second = static_cast<int>(std::lround(value));
+    } else {
+      throw std::runtime_error("--set: unknown option '" + name + "' (see docs/odometry.md)");
+    }
+  }
 }
 
 // Where the run starts, and the records read from the log to find out.
@@ -143,6 +193,7 @@ RunResult RunChain(io::LogSource& source, const OdometryArgs& args,
   options.motion_prior = kPriors.at(args.prior);
   options.match_scans = !args.no_matching;
   options.confirm_reference = kConfirm.at(args.confirm);
+  ApplySettings(args.settings, options);
   const sensors::EntityKind kind = source.description().kind.value_or(sensors::EntityKind::kRobot);
   odometry::LaserOdometry chain(options, kind, start.world_from_body, start.stamp_s);
   RunResult run;
@@ -170,15 +221,15 @@ RunResult RunChain(io::LogSource& source, const OdometryArgs& args,
 void WriteCsv(const std::filesystem::path& path, const RunResult& run) {
   std::ofstream out(path);
   out << "stamp,x,y,theta,status,score,points,reference_changed,wide_search,prior_x,prior_y,"
-         "prior_theta,gated\n";
+         "prior_theta,gated,stale\n";
   char line[320];
   for (const odometry::OdometryEstimate& e : run.estimates) {
     const geometry::Pose2& p = e.world_from_body;
     const geometry::Pose2& q = e.world_from_prior;
-    std::snprintf(line, sizeof(line), "%.6f,%.6f,%.6f,%.6f,%s,%.4f,%d,%d,%d,%.6f,%.6f,%.6f,%d\n",
+    std::snprintf(line, sizeof(line), "%.6f,%.6f,%.6f,%.6f,%s,%.4f,%d,%d,%d,%.6f,%.6f,%.6f,%d,%d\n",
                   e.stamp_s, p.x_m, p.y_m, p.theta_rad, odometry::ToString(e.status), e.score,
                   e.points, e.reference_changed ? 1 : 0, e.wide_search ? 1 : 0, q.x_m, q.y_m,
-                  q.theta_rad, e.gated ? 1 : 0);
+                  q.theta_rad, e.gated ? 1 : 0, e.stale ? 1 : 0);
     out << line;
   }
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
@@ -200,7 +251,7 @@ void WriteSummaryJson(const std::filesystem::path& path, const OdometryArgs& arg
       << ", \"records\": " << run.records << ", \"skipped_lines\": " << source.skipped()
       << ", \"scans\": " << c.scans << ", \"matched\": " << c.matched
       << ", \"degenerate\": " << c.degenerate << ", \"failed\": " << c.failed
-      << ", \"gated\": " << c.gated
+      << ", \"gated\": " << c.gated << ", \"stale\": " << c.stale
       << ", \"no_points\": " << c.no_points << ", \"prior_only\": " << run.prior_only
       << ", \"keyframes\": " << c.keyframes << ", \"wide_searches\": " << c.wide_searches
       << ", \"records_ignored\": " << c.records_ignored
@@ -298,6 +349,9 @@ void AddOdometryCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--start", args->start,
                       "Start pose X,Y,THETA_DEG (m, m, deg); default: see docs/odometry.md");
+  command->add_option("--set", args->settings,
+                      "NAME=VALUE: change a numeric chain option (for sweeps; names in "
+                      "docs/odometry.md); repeatable");
   command->add_flag("--quiet", args->quiet, "No progress line on stderr");
   command->callback([args] { RunOdometry(*args); });
 }

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "options_check.hpp"
 #include "reference_fill.hpp"
 #include "search_window.hpp"
+#include "stale_scan.hpp"
 
 namespace pena::odometry {
 
@@ -19,20 +21,32 @@ struct LaserOdometry::Impl {
        const geometry::Pose2& world_from_start, double start_stamp_s)
       : options(checked),
         motion(mode, checked.dead_reckoning, world_from_start, start_stamp_s),
-        local_map(checked.local_map_keyframes, 2.0 * checked.matcher.threshold_m, confirm),
+        wall_only_range_m(confirm ? internal::WallOnlyRangeM(checked.tilt_laser_height_m,
+                                                             checked.tilt_ceiling_height_m,
+                                                             checked.tilt_max_pitch_rad)
+                                  : 0.0),
+        local_map(checked.local_map_keyframes, 2.0 * checked.matcher.threshold_m, confirm,
+                  wall_only_range_m),
         window(checked),
-        fill_spacing_m(confirm ? 0.0 : checked.reference_fill_spacing_m),
+        stale_scans(checked.stale_history_scans, checked.stale_repeat_m, checked.stale_changed_m),
+        fill_spacing_m(confirm && wall_only_range_m <= 0.0 ? 0.0 : checked.reference_fill_spacing_m),
+        fill_max_range_m(confirm ? wall_only_range_m : std::numeric_limits<double>::infinity()),
         estimate(world_from_start),
         previous_estimate(world_from_start) {}
 
   LaserOdometryOptions options;
   internal::MotionTracker motion;
+  // With reference confirmation: the tilt model's range within which returns are walls (0: none).
+  double wall_only_range_m;
   internal::LocalMap local_map;
   std::optional<scan_matching::CorrelationScanMatcher> matcher;  // built from local_map
   internal::WindowScale window;
-  // Keyframes are densified only without reference confirmation: with a tilting body-worn laser
-  // the filled floor-hit streaks confirm each other (measured in docs/odometry.md).
+  internal::StaleScanDetector stale_scans;
+  // Keyframes are densified only where no floor or ceiling hit can be: with a tilting body-worn
+  // laser filled floor-hit streaks confirm each other (measured in docs/odometry.md). Without
+  // confirmation everywhere; with it, within the tilt model's wall-only range (if any).
   double fill_spacing_m;
+  double fill_max_range_m;
   geometry::Pose2 estimate;
   // The motion sensor's pose at the latest keyframe: priors are anchored there (see Predict).
   std::optional<geometry::Pose2> keyframe_motion_pose;
@@ -52,7 +66,10 @@ struct LaserOdometry::Impl {
   scan_matching::MatchResult Search(const scan_matching::Points2& points,
                                     const geometry::Pose2& prior, OdometryEstimate& out);
   void TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out);
-  bool OutsidePriorGate(const OdometryEstimate& out);
+  // kGated: outside the prior-consistency gate; kTrusted: outside, but the last
+  // prior_gate_confirm scans all were (the motion sensor is what is wrong).
+  enum class GateDecision { kInside, kGated, kTrusted };
+  GateDecision CheckPriorGate(const OdometryEstimate& out);
 };
 
 namespace {
@@ -97,6 +114,9 @@ LaserOdometry::LaserOdometry(const LaserOdometryOptions& options, sensors::Entit
                                    Resolve(options.motion_prior, kind),
                                    ResolveConfirm(options.confirm_reference, kind),
                                    world_from_start, start_stamp_s)) {
+  // Stale scans are a logging fault of robots (intel). A walking person's sway brings scans back
+  // within 2 cm of one a few scans earlier: loop170 seed 1 had 71 such false repeats.
+  if (kind != sensors::EntityKind::kRobot) impl_->stale_scans = internal::StaleScanDetector(0, 0.0, 0.0);
   // Without a heading source the paper needs the wide window from the start.
   const MotionPrior mode = impl_->motion.mode();
   if (mode == MotionPrior::kStrideOnly || mode == MotionPrior::kNone) impl_->window.SetWide();
@@ -128,6 +148,8 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   out.world_from_prior = Predict(scan);
   const scan_matching::Points2 points = UsablePoints(scan, options);
   out.points = static_cast<int>(points.size());
+  out.stale = stale_scans.IsStale(scan);
+  counts.stale += out.stale ? 1 : 0;
   estimate = out.world_from_prior;
   if (local_map.empty()) {
     out.status = MatchStatus::kFirst;  // starts the map; until a scan has points, again and again
@@ -142,6 +164,12 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   }
   out.world_from_body = estimate;
   out.covariance = covariance;
+  if (out.stale) {
+    // Its pose is the earlier scan's: the next scans go on from the prediction for now.
+    estimate = out.world_from_prior;
+    previous_estimate = estimate;
+    return out;
+  }
   velocity = geometry::Between(previous_estimate, estimate);
   previous_estimate = estimate;
   return out;
@@ -199,6 +227,7 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
   if (result.score < options.min_score) {
     out.status = MatchStatus::kFailed;
     ++counts.failed;
+    if (out.stale) return;  // a stale scan restarts nothing
     // Lost the reference: restart the local map from this scan at the dead-reckoning pose.
     local_map.Clear();
     TakeKeyframe(points, out);
@@ -209,14 +238,19 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
       KeepPriorAlongWeakDirection(result.information, options.degenerate_eigen_ratio, prior, estimate);
   out.status = degenerate ? MatchStatus::kDegenerate : MatchStatus::kMatched;
   ++(degenerate ? counts.degenerate : counts.matched);
-  if (OutsidePriorGate(out)) {
+  if (out.stale) return;  // where the earlier scan was taken: output, but it anchors nothing
+  const GateDecision gate = CheckPriorGate(out);
+  if (gate == GateDecision::kGated) {
     out.gated = true;  // the pose is the match's, but it anchors nothing
     ++counts.gated;
     return;
   }
   window.Shrink();
   const geometry::Pose2 moved = geometry::Between(local_map.latest().world_from_body, estimate);
-  if (std::hypot(moved.x_m, moved.y_m) > options.keyframe_distance_m ||
+  // A deviation trusted after prior_gate_confirm scans must re-anchor the priors at once: without
+  // a keyframe here the next prior is as far off again and is gated again.
+  if (gate == GateDecision::kTrusted ||
+      std::hypot(moved.x_m, moved.y_m) > options.keyframe_distance_m ||
       std::abs(moved.theta_rad) > options.keyframe_angle_rad ||
       result.score < options.keyframe_min_score) {
     TakeKeyframe(points, out);
@@ -227,8 +261,8 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
 // scan that does not belong to its stamp (intel: scans from a second earlier re-delivered during
 // a turn on the spot). Either way it must not become a keyframe: the next priors are anchored
 // there. Trusted after prior_gate_confirm in a row: then the motion sensor is what is wrong.
-bool LaserOdometry::Impl::OutsidePriorGate(const OdometryEstimate& out) {
-  if (options.prior_gate_rad <= 0.0 || !motion_since_keyframe) return false;
+LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const OdometryEstimate& out) {
+  if (options.prior_gate_rad <= 0.0 || !motion_since_keyframe) return GateDecision::kInside;
   const geometry::Pose2 deviation = geometry::Between(out.world_from_prior, estimate);
   const double moved_m = std::hypot(motion_since_keyframe->x_m, motion_since_keyframe->y_m);
   const double turned_rad = std::abs(geometry::NormalizeAngle(motion_since_keyframe->theta_rad));
@@ -239,17 +273,25 @@ bool LaserOdometry::Impl::OutsidePriorGate(const OdometryEstimate& out) {
   const double allowed_m = options.prior_gate_m + options.prior_gate_fraction * moved_m;
   const bool outside = std::abs(deviation.theta_rad) > allowed_rad ||
                        std::hypot(deviation.x_m, deviation.y_m) > allowed_m;
-  if (!outside || ++consecutive_gated >= options.prior_gate_confirm) {
+  if (!outside) {
     consecutive_gated = 0;
-    return false;
+    return GateDecision::kInside;
   }
-  return true;
+  const int confirm = motion.mode() == MotionPrior::kDeadReckoning
+                          ? options.prior_gate_confirm_gyro
+                          : options.prior_gate_confirm;
+  if (++consecutive_gated >= confirm) {
+    consecutive_gated = 0;
+    return GateDecision::kTrusted;
+  }
+  return GateDecision::kGated;
 }
 
 void LaserOdometry::Impl::TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out) {
   local_map.Add({estimate, internal::FillReference(scan_matching::TransformPoints(estimate, points), estimate,
                                          fill_spacing_m,
-                                         options.reference_fill_max_gap_m)});
+                                         options.reference_fill_max_gap_m,
+                                         options.reference_fill_max_gap_beams, fill_max_range_m)});
   keyframe_motion_pose = motion.last_pose();
   matcher.emplace(options.matcher, local_map.Reference());
   out.reference_changed = true;

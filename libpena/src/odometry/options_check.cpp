@@ -32,12 +32,26 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           o.reference_fill_spacing_m);
   Require(o.reference_fill_max_gap_m > 0.0, "reference_fill_max_gap_m", "> 0 m",
           o.reference_fill_max_gap_m);
+  Require(o.reference_fill_max_gap_beams >= 0.0, "reference_fill_max_gap_beams",
+          ">= 0 (0: no limit)", o.reference_fill_max_gap_beams);
+  Require(o.tilt_max_pitch_rad >= 0.0 && o.tilt_max_pitch_rad < 1.5, "tilt_max_pitch_rad",
+          "in [0, 1.5) rad (0: no tilt model)", o.tilt_max_pitch_rad);
+  Require(o.tilt_laser_height_m > 0.0, "tilt_laser_height_m", "> 0 m", o.tilt_laser_height_m);
+  Require(o.tilt_ceiling_height_m > o.tilt_laser_height_m, "tilt_ceiling_height_m",
+          "> tilt_laser_height_m (m)", o.tilt_ceiling_height_m);
   Require(o.prior_gate_rad >= 0.0, "prior_gate_rad", ">= 0 rad (0: no gate)", o.prior_gate_rad);
   Require(o.prior_gate_fraction >= 0.0, "prior_gate_fraction", ">= 0", o.prior_gate_fraction);
   Require(o.prior_gate_fraction_gyro >= 0.0, "prior_gate_fraction_gyro", ">= 0",
           o.prior_gate_fraction_gyro);
   Require(o.prior_gate_m > 0.0, "prior_gate_m", "> 0 m", o.prior_gate_m);
   Require(o.prior_gate_confirm >= 1, "prior_gate_confirm", ">= 1 scans", o.prior_gate_confirm);
+  Require(o.prior_gate_confirm_gyro >= 1, "prior_gate_confirm_gyro", ">= 1 scans",
+          o.prior_gate_confirm_gyro);
+  Require(o.stale_history_scans >= 0, "stale_history_scans", ">= 0 scans (0: no check)",
+          o.stale_history_scans);
+  Require(o.stale_repeat_m >= 0.0, "stale_repeat_m", ">= 0 m", o.stale_repeat_m);
+  Require(o.stale_changed_m >= o.stale_repeat_m, "stale_changed_m", ">= stale_repeat_m (m)",
+          o.stale_changed_m);
   scan_matching::ValidateWindow(o.window, o.matcher);
   scan_matching::ValidateWindow(o.wide_window, o.matcher);
   return o;

@@ -8,15 +8,15 @@ namespace {
 // A segment whose direction is within ~15 deg of the beam joins a foreground edge to what lies
 // behind it (or a wall seen at grazing incidence): nothing is known between the two returns.
 constexpr double kMaxAlongBeamCos = 0.966;
-// Neighbouring returns on one wall are at most range * beam angle / cos(incidence) apart; 3 allows
-// incidence up to 70 deg. Farther apart, they are different objects (clutter, a doorway).
-constexpr double kMaxGapPerBeamSpacing = 3.0;
 
 }  // namespace
 
 scan_matching::Points2 FillReference(const scan_matching::Points2& points_world,
                                      const geometry::Pose2& world_from_sensor, double spacing_m,
-                                     double max_gap_m) {
+                                     double max_gap_m, double max_gap_beam_spacings,
+                                     double max_range_m) {
+  // Neighbouring returns on one wall are at most range * beam angle / cos(incidence) apart; 3
+  // beam spacings allow incidence up to 70 deg. Farther apart, they are different objects.
   if (spacing_m <= 0.0 || points_world.size() < 2) return points_world;
   const Eigen::Vector2d origin(world_from_sensor.x_m, world_from_sensor.y_m);
   scan_matching::Points2 filled;
@@ -33,8 +33,9 @@ scan_matching::Points2 FillReference(const scan_matching::Points2& points_world,
         0.5 * (ray_a.norm() + ray_b.norm()) *
         std::abs(std::atan2(ray_a.x() * ray_b.y() - ray_a.y() * ray_b.x(), ray_a.dot(ray_b)));
     const Eigen::Vector2d beam = (ray_a + ray_b).normalized();
-    if (gap_m > spacing_m && gap_m <= max_gap_m &&
-        gap_m <= kMaxGapPerBeamSpacing * beam_spacing_m &&
+    if (gap_m > spacing_m && gap_m <= max_gap_m && ray_a.norm() <= max_range_m &&
+        ray_b.norm() <= max_range_m &&
+        (max_gap_beam_spacings <= 0.0 || gap_m <= max_gap_beam_spacings * beam_spacing_m) &&
         std::abs(beam.dot(step) / gap_m) < kMaxAlongBeamCos) {
       const int extra = static_cast<int>(std::floor(gap_m / spacing_m));
       for (int k = 1; k <= extra; ++k) {
