@@ -26,6 +26,10 @@ std::string PoseCsv(const geometry::Pose2& pose) {
 void EntityService::Handle(const pena_dds::Correction& sample) {
   if (sample.entity_id().to_string() != entity_id_) return;
   ++summary_.corrections_received;
+  answered_seq_ = std::max<std::uint64_t>(answered_seq_, sample.reference_seq());
+  // A lockstep answer without a correction (pena-fusion --lockstep): the attempt found nothing
+  // to apply.
+  if (sample.confidence() <= 0.0) return;
   if (options_.start_unknown) {
     HandleFrameCorrection(sample);
     return;

@@ -87,10 +87,19 @@ void ValidateEntityOptions(const EntityServiceOptions& options) {
                                              std::to_string(options.range_quantum_m));
   require(options.linger_s >= 0.0, "linger_s must be >= 0 s, got " +
                                        std::to_string(options.linger_s));
+  require(options.await_corrections_s >= 0.0,
+          "--await-corrections must be >= 0 (mission seconds between awaited attempts; 0 = off), "
+          "got " + std::to_string(options.await_corrections_s));
   require(options.wait_for_readers_s >= 0.0, "wait_for_readers_s must be >= 0 s, got " +
                                                  std::to_string(options.wait_for_readers_s));
   require(options.dds.domain_id >= 0 && options.dds.domain_id <= 232,
           "dds.domain_id must be in 0..232, got " + std::to_string(options.dds.domain_id));
+  // The plan is in the map frame; an unknown start runs the chain in the entity's own frame until
+  // the fusion places it, so map localisation against the plan would compare different frames.
+  require(!(options.start_unknown && !options.plan.empty()),
+          "--unknown-start and plan (" + options.plan.string() +
+              ") cannot be used together: the plan is in the map frame, the chain of an entity "
+              "with an unknown start in its own frame (the fusion places it; drop one of them)");
   require(options.record ? !options.output_dir.empty() : true,
           "record needs output_dir (the recording goes to output_dir/recording)");
   pipeline::ValidateEntityPipelineOptions(options.pipeline);

@@ -30,6 +30,12 @@ struct EntityServiceOptions {
   // origin), the status says so, and the fusion places it (docs/services.md, "Unknown start").
   // Command line only (--unknown-start).
   bool start_unknown = false;
+  // Lockstep with a pena-fusion run with --lockstep and --correction-interval of the same value
+  // (mission seconds; 0 = off): after a reference scan the fusion will attempt (the first, then
+  // each one at least this much mission time after the last attempted one) the entity waits
+  // for the fusion's answer before it goes on, and the log's pacing waits with it, so its
+  // corrections do not depend on the machine's load. Command line only (--await-corrections).
+  double await_corrections_s = 0.0;
   io::ReadOptions read;
   pipeline::EntityPipelineOptions pipeline;
   DdsOptions dds;

@@ -19,6 +19,9 @@ namespace {
 
 // The worker wakes at least this often to look at the stop flag and the heartbeat.
 constexpr std::int64_t kPollNs = 50'000'000;
+// --await-corrections: an answer not received within this (wall) is given up (fusion restarted,
+// sample lost); the entity goes on and waits again at the next attempted scan.
+constexpr std::int64_t kAwaitTimeoutNs = 5'000'000'000;
 
 std::int64_t SecondsToNs(double seconds) { return static_cast<std::int64_t>(seconds * 1e9); }
 
@@ -136,7 +139,7 @@ EntityRunSummary EntityService::Run() {
     // Pace the log: mission time runs `rate` times faster than wall time.
     if (options_.rate > 0.0) {
       const double offset_s = (sensors::StampOf(*record) - first_stamp_s) / options_.rate;
-      DrainInbox(wall_start_ns + SecondsToNs(offset_s));
+      DrainInbox(wall_start_ns + paused_ns_ + SecondsToNs(offset_s));
     } else {
       DrainInbox(0);
     }
@@ -189,8 +192,34 @@ void EntityService::Feed(const sensors::SensorRecord& record) {
                            map_version, options_.range_quantum_m);
     Send(scan_writer_, scan);
     ++summary_.reference_scans_sent;
+    // The same rule as the fusion's in lockstep: the scans it attempts are the ones waited for.
+    if (options_.await_corrections_s > 0.0 &&
+        step->odometry.stamp_s - last_awaited_stamp_s_ >= options_.await_corrections_s) {
+      last_awaited_stamp_s_ = step->odometry.stamp_s;
+      AwaitAnswer(scan_seq_);
+    }
   }
   if (step->map_delta) PublishDelta(*step->map_delta, last_stamp_s_);
+}
+
+void EntityService::AwaitAnswer(std::uint64_t seq) {
+  // Without a fusion listening nobody answers: the entity runs on its own.
+  if (correction_reader_.matched() == 0) return;
+  ++summary_.answers_awaited;
+  const std::int64_t start_ns = NowNs();
+  const std::int64_t until_ns = start_ns + kAwaitTimeoutNs;
+  while (answered_seq_ < seq && !StopRequested() && NowNs() < until_ns) {
+    if (std::optional<Event> event = inbox_.PopFor(std::chrono::milliseconds(20))) {
+      std::visit([this](const auto& sample) { Handle(sample); }, *event);
+    }
+    HeartbeatIfDue();
+  }
+  if (answered_seq_ < seq) {
+    ++summary_.answers_missed;
+    spdlog::warn("{}: no answer to reference scan {} within {} s; going on", entity_id_, seq,
+                 static_cast<double>(kAwaitTimeoutNs) * 1e-9);
+  }
+  paused_ns_ += NowNs() - start_ns;
 }
 
 void EntityService::SendFailed(const std::string& topic) {

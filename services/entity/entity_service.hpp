@@ -40,6 +40,8 @@ struct EntityRunSummary {
   long send_failures = 0;
   long corrections_received = 0;
   long global_deltas_received = 0;
+  long answers_awaited = 0;  // --await-corrections: reference scans whose answer was waited for
+  long answers_missed = 0;   // ... and not received within the timeout
   std::uint64_t local_map_version = 0;
   std::size_t local_map_segments = 0;
   bool interrupted = false;  // stopped by a signal before the input ended
@@ -74,6 +76,9 @@ class EntityService {
   void Handle(const pena_dds::GlobalMapSnapshot& sample);
   void Handle(const pena_dds::SyncRequest& sample);
   void Feed(const sensors::SensorRecord& record);
+  // --await-corrections: waits (handling the inbox) until the fusion answered reference scan
+  // `seq` or the timeout passed; the wait is added to the pacing.
+  void AwaitAnswer(std::uint64_t seq);
   // --unknown-start (entity_unknown_start.cpp): the chain's start pose (the origin instead of
   // the log's), a step's poses in the frame the fusion sent, and the fusion's frame corrections.
   geometry::Pose2 StartFrame(const geometry::Pose2& known_world_from_start) const;
@@ -107,6 +112,9 @@ class EntityService {
   std::uint64_t correction_seq_ = 0;
   std::int64_t next_heartbeat_ns_ = 0;
   std::int64_t last_sync_request_ns_ = 0;
+  std::uint64_t answered_seq_ = 0;         // newest reference seq the fusion answered
+  double last_awaited_stamp_s_ = -1e300;   // stamp of the last reference scan waited for
+  std::int64_t paused_ns_ = 0;             // wall time spent waiting for answers
   // --unknown-start: map_from_entity as the fusion last sent it (nullopt: not placed yet).
   std::optional<geometry::Pose2> map_from_entity_;
 

@@ -21,7 +21,7 @@ using pena::services::EntityServiceOptions;
 struct Overrides {
   std::string config, input, entity_id, kind, output_dir, participant_profile, log_level, plan;
   std::vector<std::string> profiles_files;
-  std::optional<double> rate, wait_for_readers_s, linger_s;
+  std::optional<double> rate, wait_for_readers_s, linger_s, await_corrections_s;
   std::optional<int> domain_id;
   bool record = false;
   bool start_unknown = false;
@@ -40,6 +40,10 @@ void AddOptions(CLI::App& app, Overrides& o) {
   app.add_flag("--unknown-start", o.start_unknown,
                "Ignore the log's start pose: run in the entity's own frame until the fusion "
                "places it");
+  app.add_option("--await-corrections", o.await_corrections_s,
+                 "Lockstep with pena-fusion --lockstep: wait for the answer to every reference "
+                 "scan at least this many mission seconds after the last awaited one (the "
+                 "fusion's --correction-interval)");
   app.add_option("--domain", o.domain_id, "DDS domain id (0..232)");
   app.add_option("--profile", o.participant_profile, "Participant profile (default pena_loopback)");
   app.add_option("--profiles-file", o.profiles_files, "DDS XML profile file (repeatable)");
@@ -74,6 +78,7 @@ EntityServiceOptions BuildOptions(const Overrides& o) {
   }
   if (o.wait_for_readers_s) options.wait_for_readers_s = *o.wait_for_readers_s;
   if (o.linger_s) options.linger_s = *o.linger_s;
+  if (o.await_corrections_s) options.await_corrections_s = *o.await_corrections_s;
   if (!o.log_level.empty()) options.log_level = o.log_level;
   pena::services::ValidateEntityOptions(options);
   return options;
@@ -106,6 +111,10 @@ int main(int argc, char** argv) {
                  summary.corrections_received, summary.global_deltas_received,
                  summary.local_map_version, summary.local_map_segments,
                  summary.interrupted ? " (stopped by a signal)" : "");
+    if (summary.answers_awaited > 0) {
+      spdlog::info("{}: lockstep: {} answers awaited, {} not received in time", summary.entity_id,
+                   summary.answers_awaited, summary.answers_missed);
+    }
   } catch (const pena::services::DdsError& error) {
     spdlog::critical("DDS failure: {}", error.what());
     return 2;

@@ -125,10 +125,16 @@ void CorrectionWorker::Offer(const pena_dds::ReferenceScan& scan, std::int64_t r
     } else {
       FilterOf(entity).Predict(odom_from_body);
     }
-    const std::int64_t interval_ns =
-        static_cast<std::int64_t>(options_.correction_interval_s * 1e9);
-    if (received_ns - entity.last_attempt_ns < interval_ns) return;
-    if (context_ == nullptr || context_->map_from_entity.count(entity_id) == 0) return;
+    if (options_.lockstep) {
+      // On the scans' own stamps, as the entity counts them: it waits for exactly these.
+      if (scan.stamp_s() - entity.last_attempt_stamp_s < options_.correction_interval_s) return;
+      entity.last_attempt_stamp_s = scan.stamp_s();
+    } else {
+      const std::int64_t interval_ns =
+          static_cast<std::int64_t>(options_.correction_interval_s * 1e9);
+      if (received_ns - entity.last_attempt_ns < interval_ns) return;
+      if (context_ == nullptr || context_->map_from_entity.count(entity_id) == 0) return;
+    }
     if (entity.pending) {
       stats_.Add("corrections_superseded");  // only the newest scan matters
       order_.erase(std::find(order_.begin(), order_.end(), entity_id));
@@ -155,13 +161,24 @@ std::optional<CorrectionWorker::Job> CorrectionWorker::Next() {
     entity.pending.reset();
     const std::int64_t now_ns = NowNs();
     const double waited_ms = static_cast<double>(now_ns - request.received_ns) * 1e-6;
-    if (options_.correction_max_wait_s > 0.0 && waited_ms > 1e3 * options_.correction_max_wait_s) {
+    if (!options_.lockstep && options_.correction_max_wait_s > 0.0 &&
+        waited_ms > 1e3 * options_.correction_max_wait_s) {
       // Too old to be worth the matching time: the next reference scan gets the next chance.
       stats_.Add("corrections_stale");
       continue;
     }
+    const bool known = context_ != nullptr && context_->map_from_entity.count(entity_id) > 0;
+    if (!known) {
+      // Not placed (yet): nothing to match against; in lockstep the entity waits for an answer.
+      if (options_.lockstep) {
+        const std::uint64_t version = context_ ? context_->global_version : 0;
+        lock.unlock();
+        AnswerNothing(entity_id, request.scan, version);
+        lock.lock();
+      }
+      continue;
+    }
     const auto placed = context_->map_from_entity.find(entity_id);
-    if (placed == context_->map_from_entity.end()) continue;  // not placed (yet)
     wait_ms_.push_back(waited_ms);
     entity.last_attempt_ns = now_ns;
     entity.in_flight = true;
@@ -260,7 +277,14 @@ void CorrectionWorker::Finish(const Job& job, const fusion::FusionCorrection& ma
     // The odometry that came during the match is predicted after it.
     for (const geometry::Pose2& odom : entity.deferred_odometry) FilterOf(entity).Predict(odom);
     entity.deferred_odometry.clear();
-    if (!blended) return;
+  }
+  if (!blended) {
+    if (options_.lockstep) AnswerNothing(job.entity_id, scan, job.context->global_version);
+    return;
+  }
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    Entity& entity = EntityOf(job.entity_id);
     if (IsIdentity(job.map_from_entity) && !job.start_unknown) {
       // The entity solves world_from_body = map_from_odom * odom_from_body at the stamp.
       entity.map_from_odom_sent =
@@ -287,6 +311,17 @@ void CorrectionWorker::Finish(const Job& job, const fusion::FusionCorrection& ma
                    geometry::Compose(corrected, geometry::Inverse(job.entity_from_body)),
                    match.confidence, scan.seq());
   }
+}
+
+void CorrectionWorker::AnswerNothing(const std::string& entity_id,
+                                     const pena_dds::ReferenceScan& scan,
+                                     std::uint64_t for_version) {
+  pipeline::Correction answer;
+  answer.kind = pipeline::Correction::Kind::kPose;
+  answer.stamp_s = scan.stamp_s();
+  answer.world_from_body = FromDds(scan.world_from_body());
+  answer.confidence = 0.0;  // below any entity's minimum: ignored, but it answers the scan
+  sinks_.send(entity_id, answer, scan.seq(), for_version);
 }
 
 }  // namespace pena::services

@@ -94,6 +94,7 @@ class CorrectionWorker {
     bool robot = false;
     bool start_unknown = false;
     std::int64_t last_attempt_ns = 0;
+    double last_attempt_stamp_s = -1e300;  // lockstep: the scan stamp of the last attempt
     std::optional<Request> pending;
     bool in_flight = false;
     std::vector<geometry::Pose2> deferred_odometry;  // predictions that came during a match
@@ -117,6 +118,9 @@ class CorrectionWorker {
   void Run(const Job& job);
   // Blends the match into the entity's filter and delivers the result.
   void Finish(const Job& job, const fusion::FusionCorrection& match);
+  // Lockstep: tells the entity its scan was attempted but brings nothing to apply (confidence 0).
+  void AnswerNothing(const std::string& entity_id, const pena_dds::ReferenceScan& scan,
+                     std::uint64_t for_version);
   // The corrected pose to deliver (map frame), or nullopt (rejected, gated, too small); counts.
   // Under mutex_.
   std::optional<geometry::Pose2> Blend(const Job& job, const fusion::FusionCorrection& match,

@@ -42,7 +42,14 @@ struct FusionServiceOptions {
   std::filesystem::path output_dir;   // final global map, stats, received poses; empty: none
   fusion::FusionStoreOptions store;   // silent_after_s, checkpoint_every, merge options
   bool corrections = true;            // match reference scans and send corrections
-  double correction_interval_s = 1.0; // wall seconds between attempts per entity
+  double correction_interval_s = 1.0; // seconds between attempts per entity (wall; lockstep: mission)
+  // Lockstep with entities run with --await-corrections (a test and demo mode, docs/
+  // fusion-service.md "Lockstep"): attempts are scheduled on the scans' own stamps
+  // (correction_interval_s in mission seconds), none is superseded or dropped as stale, and
+  // every attempt is answered (a correction, or a Correction with confidence 0: nothing to
+  // apply), so the entity that waits for the answer sees the same corrections however loaded
+  // the machine is. Command line only (--lockstep).
+  bool lockstep = false;
   // A reference scan that waited longer than this for the correction worker is dropped (the
   // entity's next one gets the next chance): the 200 ms latency budget minus a match.
   // Wall seconds; 0 = never dropped.

@@ -28,6 +28,7 @@ struct Overrides {
   bool raw_corrections = false;
   std::optional<double> correction_interval_s;
   std::optional<double> correction_max_wait_s;
+  bool lockstep = false;
 };
 
 void AddOptions(CLI::App& app, Overrides& o) {
@@ -39,9 +40,12 @@ void AddOptions(CLI::App& app, Overrides& o) {
   app.add_flag("--raw-corrections", o.raw_corrections,
                "Send the raw match instead of blending it with the entity's uncertainty");
   app.add_option("--correction-interval", o.correction_interval_s,
-                 "Wall seconds between correction attempts per entity");
+                 "Seconds between correction attempts per entity (wall; with --lockstep mission)");
   app.add_option("--correction-max-wait", o.correction_max_wait_s,
                  "Drop a reference scan that waited longer than this (wall s; 0 = never)");
+  app.add_flag("--lockstep", o.lockstep,
+               "Schedule correction attempts on mission time and answer every one (for entities "
+               "run with --await-corrections: results independent of the machine's load)");
   app.add_option("--domain", o.domain_id, "DDS domain id (0..232)");
   app.add_option("--profile", o.participant_profile, "Participant profile (default pena_loopback)");
   app.add_option("--profiles-file", o.profiles_files, "DDS XML profile file (repeatable)");
@@ -61,6 +65,7 @@ FusionServiceOptions BuildOptions(const Overrides& o) {
   if (o.raw_corrections) options.filter_corrections = false;
   if (o.correction_interval_s) options.correction_interval_s = *o.correction_interval_s;
   if (o.correction_max_wait_s) options.correction_max_wait_s = *o.correction_max_wait_s;
+  if (o.lockstep) options.lockstep = true;
   if (o.domain_id) options.dds.domain_id = *o.domain_id;
   if (!o.participant_profile.empty()) options.dds.participant_profile = o.participant_profile;
   if (!o.profiles_files.empty()) {

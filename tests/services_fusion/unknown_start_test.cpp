@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <thread>
 
 #include "pena/io/line_csv.hpp"
@@ -120,6 +121,31 @@ TEST(FusionProcess, EntityWithUnknownStartIsPlacedAndEndsNearTheTruth) {
     if (row.extra.find("robot1:") != std::string::npos) robot_walls = true;
   }
   EXPECT_TRUE(robot_walls);
+}
+
+// The plan is in the map frame, the chain of an entity with an unknown start in its own frame:
+// the two together are refused before any DDS participant or input is opened.
+TEST(FusionProcess, UnknownStartWithAPlanIsRefusedWithAClearMessage) {
+  const fs::path dir = testing::ScratchDir("unknown-start-plan");
+  std::ofstream(dir / "plan.csv") << "id,x1,y1,x2,y2\n1,0,0,10,0\n";
+  const pid_t pid = testing::Spawn({PENA_ENTITY_BIN, "--input", (dir / "no-such.penalog").string(),
+                                    "--unknown-start", "--plan", (dir / "plan.csv").string()},
+                                   dir / "log");
+  ASSERT_GT(pid, 0);
+  EXPECT_EQ(testing::WaitExit(pid, 20.0), 1);
+  const std::string log = testing::ReadFile(dir / "log");
+  EXPECT_NE(log.find("--unknown-start and plan"), std::string::npos) << log;
+  EXPECT_NE(log.find("plan.csv"), std::string::npos) << log;
+  // Each alone is accepted as far as the options go (the input then fails to open: exit 1 too,
+  // but with a message naming the input, not the combination).
+  const pid_t alone = testing::Spawn(
+      {PENA_ENTITY_BIN, "--input", (dir / "no-such.penalog").string(), "--unknown-start"},
+      dir / "log2");
+  ASSERT_GT(alone, 0);
+  EXPECT_EQ(testing::WaitExit(alone, 20.0), 1);
+  const std::string log2 = testing::ReadFile(dir / "log2");
+  EXPECT_EQ(log2.find("--unknown-start and plan"), std::string::npos) << log2;
+  EXPECT_NE(log2.find("no-such.penalog"), std::string::npos) << log2;
 }
 
 }  // namespace
