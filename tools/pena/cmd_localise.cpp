@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <opencv2/imgcodecs.hpp>
@@ -37,6 +38,7 @@ struct LocaliseArgs {
   bool every_scan = false;
   bool quiet = false;
   io::ReadOptions read;
+  std::vector<std::string> settings;  // --set NAME=VALUE (numeric plan-matching options, for sweeps)
 };
 
 // "X,Y,THETA_DEG" -> pose (metres, metres, radians); anything else is a usage error naming `option`.
@@ -55,6 +57,45 @@ geometry::Pose2 ParsePose(const std::string& text, const std::string& option) {
     cursor = end + 1;
   }
   return {values[0], values[1], values[2] * kDeg};
+}
+
+// Applies --set NAME=VALUE to the plan-matching options (names as in MapLocaliserOptions);
+// integer options are rounded; unknown names are errors. The options are validated by
+// MapLocaliser's constructor as usual.
+void ApplySettings(const std::vector<std::string>& settings, localisation::MapLocaliserOptions& o) {
+  const std::map<std::string, double*> doubles = {
+      {"min_score", &o.min_score},
+      {"reacquire_min_score", &o.reacquire_min_score},
+      {"window_growth", &o.window_growth},
+      {"max_range_m", &o.max_range_m},
+      {"degenerate_eigen_ratio", &o.degenerate_eigen_ratio},
+      {"along_probe_m", &o.along_probe_m},
+      {"along_min_drop", &o.along_min_drop},
+      {"matcher.threshold_m", &o.matcher.threshold_m}};
+  const std::map<std::string, int*> ints = {{"min_hits", &o.min_hits},
+                                            {"outside_after_failures", &o.outside_after_failures},
+                                            {"oversample", &o.oversample}};
+  for (const std::string& setting : settings) {
+    const std::size_t equals = setting.find('=');
+    const std::string name = setting.substr(0, equals);
+    char* end = nullptr;
+    const double value =
+        equals == std::string::npos ? NAN : std::strtod(setting.c_str() + equals + 1, &end);
+    if (!std::isfinite(value) || end == nullptr || *end != '\0') {
+      throw std::runtime_error("--set: expected NAME=NUMBER, got '" + setting + "'");
+    }
+    if (name == "window.size_xy_m") {
+      o.window.size_x_m = o.window.size_y_m = value;
+    } else if (name == "max_window.size_xy_m") {
+      o.max_window.size_x_m = o.max_window.size_y_m = value;
+    } else if (const auto d = doubles.find(name); d != doubles.end()) {
+      *d->second = value;
+    } else if (const auto i = ints.find(name); i != ints.end()) {
+      *i->second = static_cast<int>(std::lround(value));
+    } else {
+      throw std::runtime_error("--set: unknown option '" + name + "' (see docs/localisation.md)");
+    }
+  }
 }
 
 // The plan in the mission frame: read (CSV, SVG or DXF), scaled to metres, then moved by
@@ -97,6 +138,7 @@ Run RunChain(const LocaliseArgs& args, io::LogSource& source, std::vector<geomet
   localisation::LocalisationChainOptions options;
   options.global_start = args.global;
   options.map.every_scan = args.every_scan;
+  ApplySettings(args.settings, options.map);
   const double start_stamp_s = read_ahead.empty() ? 0.0 : sensors::StampOf(read_ahead.front());
   localisation::LocalisationChain chain(options, source.description().kind.value_or(sensors::EntityKind::kRobot),
                                         std::move(plan), start, start_stamp_s);
@@ -352,6 +394,9 @@ void AddLocaliseCommand(CLI::App& app) {
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
   command->add_flag("--quiet", args->quiet, "No progress line on stderr");
+  command->add_option("--set", args->settings,
+                      "NAME=VALUE: change a numeric plan-matching option (for sweeps; names in "
+                      "docs/localisation.md); repeatable");
   command->callback([args] {
     if (args->global && !args->start.empty()) throw std::runtime_error("--global and --start exclude each other");
     RunLocalise(*args);

@@ -136,7 +136,15 @@ void MapLocaliser::Impl::Judge(const scan_matching::MatchResult& match,
   }
   const double min_score =
       status == MapStatus::kOutsideMap ? options.reacquire_min_score : options.min_score;
-  round.accepted = match.converged && match.hits >= options.min_hits && match.score >= min_score;
+  // The least-squares refinement after the search is not bounded by the window. It may finish a
+  // little beyond it, but a correction more than twice the searched half-extent was not searched
+  // for (intel: a -17 deg turn out of a +/-2 deg window lost the entity for good).
+  const geometry::Pose2& found = match.reference_from_scan;
+  const bool in_window = std::abs(found.x_m) <= window.size_x_m &&
+                         std::abs(found.y_m) <= window.size_y_m &&
+                         std::abs(found.theta_rad) <= window.size_theta_rad;
+  round.accepted =
+      match.converged && in_window && match.hits >= options.min_hits && match.score >= min_score;
   round.confidence = match.score * std::min(1.0, match.hits / (2.0 * options.min_hits));
   if (round.accepted) round.correction = correction;
 }
