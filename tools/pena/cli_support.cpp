@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
 
 namespace pena::cli {
 
@@ -10,6 +13,17 @@ std::string Fixed(double value, int decimals) {
   char buffer[64];
   std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
   return buffer;
+}
+
+Setting ParseSetting(const std::string& setting) {
+  const std::size_t equals = setting.find('=');
+  char* end = nullptr;
+  const double value =
+      equals == std::string::npos ? NAN : std::strtod(setting.c_str() + equals + 1, &end);
+  if (!std::isfinite(value) || end == nullptr || *end != '\0') {
+    throw std::runtime_error("--set: expected NAME=NUMBER, got '" + setting + "'");
+  }
+  return {setting.substr(0, equals), value};
 }
 
 std::string JsonString(const std::string& text) {

@@ -23,6 +23,13 @@ std::string JsonString(const std::string& text);
 // Wall-clock seconds since `start`.
 double SecondsSince(Clock::time_point start);
 
+// One `--set NAME=NUMBER` setting, split and checked (a finite number, nothing after it).
+struct Setting {
+  std::string name;
+  double value = 0.0;
+};
+Setting ParseSetting(const std::string& setting);
+
 // One stderr line, rewritten in place on a terminal (a plain line otherwise), at most every 2 s.
 class ProgressLine {
  public:

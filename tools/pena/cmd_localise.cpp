@@ -76,14 +76,7 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::MapLo
                                             {"outside_after_failures", &o.outside_after_failures},
                                             {"oversample", &o.oversample}};
   for (const std::string& setting : settings) {
-    const std::size_t equals = setting.find('=');
-    const std::string name = setting.substr(0, equals);
-    char* end = nullptr;
-    const double value =
-        equals == std::string::npos ? NAN : std::strtod(setting.c_str() + equals + 1, &end);
-    if (!std::isfinite(value) || end == nullptr || *end != '\0') {
-      throw std::runtime_error("--set: expected NAME=NUMBER, got '" + setting + "'");
-    }
+    const auto [name, value] = ParseSetting(setting);
     if (name == "window.size_xy_m") {
       o.window.size_x_m = o.window.size_y_m = value;
     } else if (name == "max_window.size_xy_m") {

@@ -107,14 +107,7 @@ void ApplySettings(const std::vector<std::string>& settings, odometry::LaserOdom
                                             {"prior_gate_confirm_gyro", &o.prior_gate_confirm_gyro},
                                             {"stale_history_scans", &o.stale_history_scans}};
   for (const std::string& setting : settings) {
-    const std::size_t equals = setting.find('=');
-    const std::string name = setting.substr(0, equals);
-    char* end = nullptr;
-    const double value =
-        equals == std::string::npos ? NAN : std::strtod(setting.c_str() + equals + 1, &end);
-    if (!std::isfinite(value) || end == nullptr || *end != '\0') {
-      throw std::runtime_error("--set: expected NAME=NUMBER, got '" + setting + "'");
-    }
+    const auto [name, value] = ParseSetting(setting);
     if (const auto d = doubles.find(name); d != doubles.end()) {
       *d->second = value;
     } else if (const auto i = ints.find(name); i != ints.end()) {
