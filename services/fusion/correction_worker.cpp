@@ -277,22 +277,20 @@ void CorrectionWorker::Finish(const Job& job, const fusion::FusionCorrection& ma
     // The odometry that came during the match is predicted after it.
     for (const geometry::Pose2& odom : entity.deferred_odometry) FilterOf(entity).Predict(odom);
     entity.deferred_odometry.clear();
+    // Recorded under the same lock as in_flight: a later match for this entity must not be
+    // overwritten by this older one.
+    if (blended && IsIdentity(job.map_from_entity) && !job.start_unknown) {
+      // The entity solves world_from_body = map_from_odom * odom_from_body at the stamp.
+      entity.map_from_odom_sent =
+          geometry::Compose(*blended, geometry::Inverse(FromDds(scan.odom_from_body())));
+    } else if (blended) {
+      entity.map_from_entity_sent =
+          geometry::Compose(*blended, geometry::Inverse(job.entity_from_body));
+    }
   }
   if (!blended) {
     if (options_.lockstep) AnswerNothing(job.entity_id, scan, job.context->global_version);
     return;
-  }
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    Entity& entity = EntityOf(job.entity_id);
-    if (IsIdentity(job.map_from_entity) && !job.start_unknown) {
-      // The entity solves world_from_body = map_from_odom * odom_from_body at the stamp.
-      entity.map_from_odom_sent =
-          geometry::Compose(*blended, geometry::Inverse(FromDds(scan.odom_from_body())));
-    } else {
-      entity.map_from_entity_sent =
-          geometry::Compose(*blended, geometry::Inverse(job.entity_from_body));
-    }
   }
   const geometry::Pose2 corrected = *blended;
   if (IsIdentity(job.map_from_entity) && !job.start_unknown) {
