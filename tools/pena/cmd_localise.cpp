@@ -59,11 +59,16 @@ geometry::Pose2 ParsePose(const std::string& text, const std::string& option) {
   return {values[0], values[1], values[2] * kDeg};
 }
 
-// Applies --set NAME=VALUE to the plan-matching options (names as in MapLocaliserOptions);
+// Applies --set NAME=VALUE to the plan-matching options (names as in MapLocaliserOptions) and,
+// prefixed "odometry.", to the prior gate of the odometry underneath (issue 3 sweeps);
 // integer options are rounded; unknown names are errors. The options are validated by
 // MapLocaliser's constructor as usual.
-void ApplySettings(const std::vector<std::string>& settings, localisation::MapLocaliserOptions& o) {
+void ApplySettings(const std::vector<std::string>& settings, localisation::MapLocaliserOptions& o,
+                   odometry::LaserOdometryOptions& odometry) {
   const std::map<std::string, double*> doubles = {
+      {"odometry.prior_gate_agree_gyro_m", &odometry.prior_gate_agree_gyro_m},
+      {"odometry.prior_gate_agree_gyro_rad", &odometry.prior_gate_agree_gyro_rad},
+      {"odometry.prior_gate_compass_window_s", &odometry.prior_gate_compass_window_s},
       {"min_score", &o.min_score},
       {"reacquire_min_score", &o.reacquire_min_score},
       {"window_growth", &o.window_growth},
@@ -74,7 +79,9 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::MapLo
       {"matcher.threshold_m", &o.matcher.threshold_m}};
   const std::map<std::string, int*> ints = {{"min_hits", &o.min_hits},
                                             {"outside_after_failures", &o.outside_after_failures},
-                                            {"oversample", &o.oversample}};
+                                            {"oversample", &o.oversample},
+                                            {"odometry.prior_gate_confirm_gyro",
+                                             &odometry.prior_gate_confirm_gyro}};
   for (const std::string& setting : settings) {
     const auto [name, value] = ParseSetting(setting);
     if (name == "window.size_xy_m") {
@@ -131,7 +138,7 @@ Run RunChain(const LocaliseArgs& args, io::LogSource& source, std::vector<geomet
   localisation::LocalisationChainOptions options;
   options.global_start = args.global;
   options.map.every_scan = args.every_scan;
-  ApplySettings(args.settings, options.map);
+  ApplySettings(args.settings, options.map, options.odometry);
   const double start_stamp_s = read_ahead.empty() ? 0.0 : sensors::StampOf(read_ahead.front());
   localisation::LocalisationChain chain(options, source.description().kind.value_or(sensors::EntityKind::kRobot),
                                         std::move(plan), start, start_stamp_s);

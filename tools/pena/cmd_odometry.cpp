@@ -86,10 +86,17 @@ std::map<std::string, double*> SettableOptions(odometry::LaserOdometryOptions& o
           {"reference_fill_spacing_m", &o.reference_fill_spacing_m},
           {"reference_fill_max_gap_m", &o.reference_fill_max_gap_m},
           {"reference_fill_max_gap_beams", &o.reference_fill_max_gap_beams},
+          {"reference_fill_max_gap_beams_bursty", &o.reference_fill_max_gap_beams_bursty},
+          {"reference_fill_band_spacing_m", &o.reference_fill_band_spacing_m},
+          {"timing_burst_gap_s", &o.timing_burst_gap_s},
+          {"timing_burst_fraction", &o.timing_burst_fraction},
           {"prior_gate_rad", &o.prior_gate_rad},
           {"prior_gate_fraction", &o.prior_gate_fraction},
           {"prior_gate_fraction_gyro", &o.prior_gate_fraction_gyro},
           {"prior_gate_m", &o.prior_gate_m},
+          {"prior_gate_agree_gyro_m", &o.prior_gate_agree_gyro_m},
+          {"prior_gate_agree_gyro_rad", &o.prior_gate_agree_gyro_rad},
+          {"prior_gate_compass_window_s", &o.prior_gate_compass_window_s},
           {"stale_repeat_m", &o.stale_repeat_m},
           {"tilt_max_pitch_rad", &o.tilt_max_pitch_rad},
           {"tilt_laser_height_m", &o.tilt_laser_height_m},
@@ -105,7 +112,9 @@ void ApplySettings(const std::vector<std::string>& settings, odometry::LaserOdom
                                             {"min_match_points", &o.min_match_points},
                                             {"prior_gate_confirm", &o.prior_gate_confirm},
                                             {"prior_gate_confirm_gyro", &o.prior_gate_confirm_gyro},
-                                            {"stale_history_scans", &o.stale_history_scans}};
+                                            {"stale_history_scans", &o.stale_history_scans},
+                                            {"timing_burst_window_scans",
+                                             &o.timing_burst_window_scans}};
   for (const std::string& setting : settings) {
     const auto [name, value] = ParseSetting(setting);
     if (const auto d = doubles.find(name); d != doubles.end()) {

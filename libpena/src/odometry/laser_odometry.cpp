@@ -12,6 +12,8 @@
 #include "options_check.hpp"
 #include "reference_fill.hpp"
 #include "search_window.hpp"
+#include "burst_timing.hpp"
+#include "gate_confirmation.hpp"
 #include "stale_scan.hpp"
 
 namespace pena::odometry {
@@ -29,10 +31,14 @@ struct LaserOdometry::Impl {
                   wall_only_range_m),
         window(checked),
         stale_scans(checked.stale_history_scans, checked.stale_repeat_m, checked.stale_changed_m),
+        timing(checked.timing_burst_gap_s, checked.timing_burst_fraction,
+               checked.timing_burst_window_scans),
         fill_spacing_m(confirm && wall_only_range_m <= 0.0 ? 0.0 : checked.reference_fill_spacing_m),
         fill_max_range_m(confirm ? wall_only_range_m : std::numeric_limits<double>::infinity()),
         estimate(world_from_start),
-        previous_estimate(world_from_start) {}
+        previous_estimate(world_from_start),
+        gate_confirmation(mode == MotionPrior::kDeadReckoning ? checked.prior_gate_agree_gyro_m : 0.0,
+                          checked.prior_gate_agree_gyro_rad) {}
 
   LaserOdometryOptions options;
   internal::MotionTracker motion;
@@ -42,6 +48,8 @@ struct LaserOdometry::Impl {
   std::optional<scan_matching::CorrelationScanMatcher> matcher;  // built from local_map
   internal::WindowScale window;
   internal::StaleScanDetector stale_scans;
+  internal::BurstTiming timing;
+  bool poor_timing = false;  // scans arrive in bursts now: keyframes keep the bursty fill limit
   // Keyframes are densified only where no floor or ceiling hit can be: with a tilting body-worn
   // laser filled floor-hit streaks confirm each other (measured in docs/odometry.md). Without
   // confirmation everywhere; with it, within the tilt model's wall-only range (if any).
@@ -56,7 +64,7 @@ struct LaserOdometry::Impl {
   // The motion sensor's motion since the latest keyframe (nullopt without a sensor pose): the
   // prior-consistency gate's allowance grows with it.
   std::optional<geometry::Pose2> motion_since_keyframe;
-  int consecutive_gated = 0;
+  internal::GateConfirmation gate_confirmation;
   std::optional<double> last_scan_stamp_s;
   OdometryCounts counts;
 
@@ -146,6 +154,7 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   OdometryEstimate out;
   out.stamp_s = scan.stamp_s;
   out.world_from_prior = Predict(scan);
+  poor_timing = timing.Add(scan.stamp_s);
   const scan_matching::Points2 points = UsablePoints(scan, options);
   out.points = static_cast<int>(points.size());
   out.stale = stale_scans.IsStale(scan);
@@ -274,24 +283,27 @@ LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const Odom
   const bool outside = std::abs(deviation.theta_rad) > allowed_rad ||
                        std::hypot(deviation.x_m, deviation.y_m) > allowed_m;
   if (!outside) {
-    consecutive_gated = 0;
+    gate_confirmation.Inside();
     return GateDecision::kInside;
   }
   const int confirm = motion.mode() == MotionPrior::kDeadReckoning
                           ? options.prior_gate_confirm_gyro
                           : options.prior_gate_confirm;
-  if (++consecutive_gated >= confirm) {
-    consecutive_gated = 0;
-    return GateDecision::kTrusted;
-  }
-  return GateDecision::kGated;
+  // A disturbed compass (readings being rejected) bends the gyro+compass heading while it
+  // lasts: the scans' deviations then change scan to scan and must count without agreeing
+  // (the disturbed-compass tests: 0.97 -> 4.9 m RMS if they have to agree).
+  const bool agree = !motion.CompassRejectedWithin(out.stamp_s, options.prior_gate_compass_window_s);
+  return gate_confirmation.Outside(deviation, confirm, agree) ? GateDecision::kTrusted
+                                                              : GateDecision::kGated;
 }
 
 void LaserOdometry::Impl::TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out) {
-  local_map.Add({estimate, internal::FillReference(scan_matching::TransformPoints(estimate, points), estimate,
-                                         fill_spacing_m,
-                                         options.reference_fill_max_gap_m,
-                                         options.reference_fill_max_gap_beams, fill_max_range_m)});
+  const double max_gap_beams = poor_timing ? options.reference_fill_max_gap_beams_bursty
+                                           : options.reference_fill_max_gap_beams;
+  local_map.Add({estimate, internal::FillReference(
+                               scan_matching::TransformPoints(estimate, points), estimate,
+                               fill_spacing_m, options.reference_fill_max_gap_m, max_gap_beams,
+                               fill_max_range_m, options.reference_fill_band_spacing_m)});
   keyframe_motion_pose = motion.last_pose();
   matcher.emplace(options.matcher, local_map.Reference());
   out.reference_changed = true;

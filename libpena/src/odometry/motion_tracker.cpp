@@ -21,8 +21,14 @@ MotionTracker::MotionTracker(MotionPrior mode,
 
 bool MotionTracker::Add(const sensors::SensorRecord& record) {
   switch (mode_) {
-    case MotionPrior::kDeadReckoning:
-      return dead_reckoning_.Add(record) != dead_reckoning::DeadReckoningEvent::kIgnored;
+    case MotionPrior::kDeadReckoning: {
+      const dead_reckoning::DeadReckoningEvent event = dead_reckoning_.Add(record);
+      const auto* compass = std::get_if<sensors::CompassSample>(&record);
+      if (compass && event == dead_reckoning::DeadReckoningEvent::kCompassRejected) {
+        last_compass_rejected_s_ = compass->stamp_s;
+      }
+      return event != dead_reckoning::DeadReckoningEvent::kIgnored;
+    }
     case MotionPrior::kStrideOnly:
       if (const auto* stride = std::get_if<sensors::StrideSample>(&record)) {
         // The same sanity limits as full dead reckoning, without a heading source.
@@ -76,6 +82,10 @@ geometry::Pose2 MotionTracker::TakeIncrement(const sensors::LaserScan& scan) {
       last_odometry_pose_ ? geometry::Between(*last_odometry_pose_, *now) : geometry::Pose2{};
   last_odometry_pose_ = now;
   return increment;
+}
+
+bool MotionTracker::CompassRejectedWithin(double stamp_s, double window_s) const {
+  return last_compass_rejected_s_ && stamp_s - *last_compass_rejected_s_ <= window_s;
 }
 
 const dead_reckoning::DeadReckoningCounts& MotionTracker::dead_reckoning_counts() const {

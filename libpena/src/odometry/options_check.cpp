@@ -34,6 +34,16 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           o.reference_fill_max_gap_m);
   Require(o.reference_fill_max_gap_beams >= 0.0, "reference_fill_max_gap_beams",
           ">= 0 (0: no limit)", o.reference_fill_max_gap_beams);
+  Require(o.reference_fill_max_gap_beams_bursty >= 0.0, "reference_fill_max_gap_beams_bursty",
+          ">= 0 (0: no limit)", o.reference_fill_max_gap_beams_bursty);
+  Require(o.reference_fill_band_spacing_m >= 0.0, "reference_fill_band_spacing_m",
+          ">= 0 m (0: band not filled)", o.reference_fill_band_spacing_m);
+  Require(o.timing_burst_gap_s >= 0.0, "timing_burst_gap_s", ">= 0 s (0: no timing check)",
+          o.timing_burst_gap_s);
+  Require(o.timing_burst_fraction >= 0.0 && o.timing_burst_fraction < 1.0,
+          "timing_burst_fraction", "in [0, 1)", o.timing_burst_fraction);
+  Require(o.timing_burst_window_scans >= 0, "timing_burst_window_scans",
+          ">= 0 scans (0: all so far)", o.timing_burst_window_scans);
   Require(o.tilt_max_pitch_rad >= 0.0 && o.tilt_max_pitch_rad < 1.5, "tilt_max_pitch_rad",
           "in [0, 1.5) rad (0: no tilt model)", o.tilt_max_pitch_rad);
   Require(o.tilt_laser_height_m > 0.0, "tilt_laser_height_m", "> 0 m", o.tilt_laser_height_m);
@@ -47,6 +57,12 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
   Require(o.prior_gate_confirm >= 1, "prior_gate_confirm", ">= 1 scans", o.prior_gate_confirm);
   Require(o.prior_gate_confirm_gyro >= 1, "prior_gate_confirm_gyro", ">= 1 scans",
           o.prior_gate_confirm_gyro);
+  Require(o.prior_gate_agree_gyro_m >= 0.0, "prior_gate_agree_gyro_m", ">= 0 m (0: a plain count)",
+          o.prior_gate_agree_gyro_m);
+  Require(o.prior_gate_agree_gyro_rad > 0.0, "prior_gate_agree_gyro_rad", "> 0 rad",
+          o.prior_gate_agree_gyro_rad);
+  Require(o.prior_gate_compass_window_s >= 0.0, "prior_gate_compass_window_s", ">= 0 s",
+          o.prior_gate_compass_window_s);
   Require(o.stale_history_scans >= 0, "stale_history_scans", ">= 0 scans (0: no check)",
           o.stale_history_scans);
   Require(o.stale_repeat_m >= 0.0, "stale_repeat_m", ">= 0 m", o.stale_repeat_m);

@@ -14,7 +14,7 @@ constexpr double kMaxAlongBeamCos = 0.966;
 scan_matching::Points2 FillReference(const scan_matching::Points2& points_world,
                                      const geometry::Pose2& world_from_sensor, double spacing_m,
                                      double max_gap_m, double max_gap_beam_spacings,
-                                     double max_range_m) {
+                                     double max_range_m, double band_spacing_m) {
   // Neighbouring returns on one wall are at most range * beam angle / cos(incidence) apart; 3
   // beam spacings allow incidence up to 70 deg. Farther apart, they are different objects.
   if (spacing_m <= 0.0 || points_world.size() < 2) return points_world;
@@ -33,11 +33,13 @@ scan_matching::Points2 FillReference(const scan_matching::Points2& points_world,
         0.5 * (ray_a.norm() + ray_b.norm()) *
         std::abs(std::atan2(ray_a.x() * ray_b.y() - ray_a.y() * ray_b.x(), ray_a.dot(ray_b)));
     const Eigen::Vector2d beam = (ray_a + ray_b).normalized();
-    if (gap_m > spacing_m && gap_m <= max_gap_m && ray_a.norm() <= max_range_m &&
-        ray_b.norm() <= max_range_m &&
-        (max_gap_beam_spacings <= 0.0 || gap_m <= max_gap_beam_spacings * beam_spacing_m) &&
-        std::abs(beam.dot(step) / gap_m) < kMaxAlongBeamCos) {
-      const int extra = static_cast<int>(std::floor(gap_m / spacing_m));
+    const bool within_beams =
+        max_gap_beam_spacings <= 0.0 || gap_m <= max_gap_beam_spacings * beam_spacing_m;
+    // Beyond the beam-spacing limit (the grazing band), filled sparser if at all: fewer hits.
+    const double step_m = within_beams ? spacing_m : band_spacing_m;
+    if (step_m > 0.0 && gap_m > step_m && gap_m <= max_gap_m && ray_a.norm() <= max_range_m &&
+        ray_b.norm() <= max_range_m && std::abs(beam.dot(step) / gap_m) < kMaxAlongBeamCos) {
+      const int extra = static_cast<int>(std::floor(gap_m / step_m));
       for (int k = 1; k <= extra; ++k) {
         const double fraction = static_cast<double>(k) / static_cast<double>(extra + 1);
         filled.push_back(a + fraction * step);
