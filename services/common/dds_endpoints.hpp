@@ -78,6 +78,8 @@ class Writer {
            ReturnCode_t::RETCODE_OK;
   }
   const std::string& topic_name() const { return topic_name_; }
+  // The history depth its XML profile gave (keep last N).
+  int history_depth() const { return writer_->get_qos().history().depth; }
 
  private:
   Participant& participant_;

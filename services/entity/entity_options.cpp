@@ -48,7 +48,19 @@ EntityServiceOptions EntityOptionsFromConfig(const config::EntityConfig& config,
                                              const std::filesystem::path& config_path) {
   EntityServiceOptions out;
   try {
-    if (config.has_input()) out.input = ResolvePath(config_path, config.input());
+    if (config.has_input()) {
+      out.input = IsLiveInput(config.input()) ? std::filesystem::path(kLiveInput)
+                                              : ResolvePath(config_path, config.input());
+    }
+    if (config.has_live_input()) {
+      if (config.has_input() && !IsLiveInput(config.input())) {
+        throw std::invalid_argument("live_input applies only to input: \"dds\" (input is '" +
+                                    config.input() + "')");
+      }
+      out.live.merge.reorder_window_s = config.live_input().reorder_window_s();
+      out.live.idle_timeout_s = config.live_input().idle_timeout_s();
+      out.live.end_grace_s = config.live_input().end_grace_s();
+    }
     if (!config.plan().empty()) out.plan = ResolvePath(config_path, config.plan());
     out.entity_id = config.entity_id();
     if (config.has_kind()) {
@@ -74,11 +86,21 @@ EntityServiceOptions EntityOptionsFromConfig(const config::EntityConfig& config,
   return out;
 }
 
+bool IsLiveInput(const std::filesystem::path& input) { return input == kLiveInput; }
+
+LiveSensorOptions LiveOptionsOf(const EntityServiceOptions& options) {
+  LiveSensorOptions live = options.live;
+  live.entity_id = options.entity_id;
+  return live;
+}
+
 void ValidateEntityOptions(const EntityServiceOptions& options) {
   auto require = [](bool ok, const std::string& message) {
     if (!ok) throw std::invalid_argument(message);
   };
-  require(!options.input.empty(), "input is required (a sensors.penalog or a CARMEN log)");
+  require(!options.input.empty(),
+          "input is required (a sensors.penalog, a CARMEN log, or dds for the live sensor topics)");
+  if (IsLiveInput(options.input)) ValidateLiveSensorOptions(LiveOptionsOf(options));
   require(options.rate >= 0.0, "rate must be >= 0 (0 = as fast as possible), got " +
                                    std::to_string(options.rate));
   require(options.heartbeat_period_s > 0.0, "heartbeat_period_s must be > 0 s, got " +

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "dds_participant.hpp"
+#include "live_sensor_source.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/pipeline/entity_pipeline.hpp"
 #include "pena/sensors/entity.hpp"
@@ -15,7 +16,7 @@
 namespace pena::services {
 
 struct EntityServiceOptions {
-  std::filesystem::path input;        // native log or CARMEN log
+  std::filesystem::path input;        // native log, CARMEN log, or "dds" (kLiveInput)
   std::filesystem::path plan;         // a priori plan (map localisation); empty: none
   std::string entity_id;              // empty: the log's own, else the file's stem
   std::optional<sensors::EntityKind> kind;  // empty: the log's own, else robot
@@ -36,6 +37,8 @@ struct EntityServiceOptions {
   // for the fusion's answer before it goes on, and the log's pacing waits with it, so its
   // corrections do not depend on the machine's load. Command line only (--await-corrections).
   double await_corrections_s = 0.0;
+  // input "dds": the live sensor topics (entity_id required; live.entity_id is set from it).
+  LiveSensorOptions live;
   io::ReadOptions read;
   pipeline::EntityPipelineOptions pipeline;
   DdsOptions dds;
@@ -47,6 +50,12 @@ struct EntityServiceOptions {
 // Throws io::InputError(config_path, 0, "key: what") for a bad value.
 EntityServiceOptions EntityOptionsFromConfig(const config::EntityConfig& config,
                                              const std::filesystem::path& config_path);
+
+// True when `input` names the live sensor topics ("dds") rather than a file.
+bool IsLiveInput(const std::filesystem::path& input);
+
+// The live input's options with the entity id filled in.
+LiveSensorOptions LiveOptionsOf(const EntityServiceOptions& options);
 
 // Checks the whole struct; throws std::invalid_argument naming the key and unit.
 void ValidateEntityOptions(const EntityServiceOptions& options);

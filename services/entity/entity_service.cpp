@@ -29,7 +29,7 @@ std::int64_t SecondsToNs(double seconds) { return static_cast<std::int64_t>(seco
 
 EntityService::EntityService(EntityServiceOptions options)
     : options_(std::move(options)),
-      source_(io::OpenLog(options_.input, options_.read)),
+      source_(IsLiveInput(options_.input) ? nullptr : io::OpenLog(options_.input, options_.read)),
       participant_(options_.dds, "pena-entity"),
       pose_writer_(participant_, topics::kPose),
       status_writer_(participant_, topics::kStatus),
@@ -53,8 +53,19 @@ EntityService::EntityService(EntityServiceOptions options)
                    [this](pena_dds::SyncRequest&& s, const SampleMeta&) {
                      inbox_.Push(std::move(s));
                    }) {
-  ReadAhead();
-  if (options_.record) StartRecording();
+  if (!source_) {
+    // The live input's readers live on this participant; ~EntityService releases them first.
+    auto live = std::make_unique<LiveSensorSource>(participant_, LiveOptionsOf(options_));
+    live_source_ = live.get();
+    source_ = std::move(live);
+  }
+  try {
+    ReadAhead();
+    if (options_.record) StartRecording();
+  } catch (...) {
+    source_.reset();  // ~EntityService does not run for a constructor that throws
+    throw;
+  }
 }
 
 void EntityService::StartRecording() {
@@ -73,7 +84,11 @@ void EntityService::StartRecording() {
   recorder_->OpenSensorLog(header);
 }
 
-EntityService::~EntityService() = default;
+EntityService::~EntityService() {
+  // Members go in reverse order and the participant is declared after source_: a live source's
+  // readers must go while the participant still exists.
+  source_.reset();
+}
 
 void EntityService::ReadAhead() {
   // Up to the first scan: the start pose and the first stamp come from there.
@@ -81,7 +96,13 @@ void EntityService::ReadAhead() {
     read_ahead_.push_back(std::move(*record));
     if (std::holds_alternative<sensors::LaserScan>(read_ahead_.back())) break;
   }
-  if (read_ahead_.empty()) throw io::InputError(options_.input, 0, "the log holds no records");
+  if (read_ahead_.empty()) {
+    throw io::InputError(options_.input, 0,
+                         live_source_ ? "no sensor record for " + options_.entity_id +
+                                            " before the live input ended (" +
+                                            live_source_->end_reason() + ")"
+                                      : std::string("the log holds no records"));
+  }
   const io::LogDescription& description = source_->description();
   kind_ = options_.kind.value_or(description.kind.value_or(sensors::EntityKind::kRobot));
   const std::string file_name = options_.input.filename().string();
@@ -90,8 +111,9 @@ void EntityService::ReadAhead() {
                                                 : file_name.substr(0, file_name.find('.'));
   pena_dds::EntityPose probe;
   SetBounded(probe.entity_id(), entity_id_, "entity_id");
-  const pipeline::StartPose start =
-      pipeline::StartPoseOf(read_ahead_, description.format == "pena-log");
+  // The live input states a known start as a ground-truth record too (LiveSensorSource).
+  const pipeline::StartPose start = pipeline::StartPoseOf(
+      read_ahead_, description.format == "pena-log" || description.format == kLiveInput);
   pipeline_.emplace(options_.pipeline, kind_, entity_id_, StartFrame(start.world_from_body),
                     sensors::StampOf(read_ahead_.front()));
   summary_.entity_id = entity_id_;
@@ -128,6 +150,9 @@ EntityRunSummary EntityService::Run() {
   const std::int64_t wall_start_ns = NowNs();
   next_heartbeat_ns_ = wall_start_ns + SecondsToNs(options_.heartbeat_period_s);
   std::size_t ahead = 0;
+  // Live input: the sensors pace the stream; while it waits for them the inbox and the
+  // heartbeat are served as between records.
+  if (live_source_) live_source_->SetWaitHook([this] { DrainInbox(0); });
   while (!StopRequested()) {
     std::optional<sensors::SensorRecord> record;
     if (ahead < read_ahead_.size()) {
@@ -137,7 +162,7 @@ EntityRunSummary EntityService::Run() {
     }
     if (!record) break;
     // Pace the log: mission time runs `rate` times faster than wall time.
-    if (options_.rate > 0.0) {
+    if (options_.rate > 0.0 && !live_source_) {
       const double offset_s = (sensors::StampOf(*record) - first_stamp_s) / options_.rate;
       DrainInbox(wall_start_ns + paused_ns_ + SecondsToNs(offset_s));
     } else {
@@ -146,6 +171,7 @@ EntityRunSummary EntityService::Run() {
     Feed(*record);
     HeartbeatIfDue();
   }
+  if (live_source_) live_source_->SetWaitHook({});
   summary_.interrupted = StopRequested();
   Finish();
   return summary_;

@@ -1,5 +1,6 @@
 #pragma once
-// pena-entity's application class: the constructor opens the input and creates the participant,
+// pena-entity's application class: the constructor opens the input (a log file, or the live
+// sensor topics on the same participant) and creates the participant,
 // writers and readers from the XML profiles (throws on failure); Run() is the one worker that
 // owns the per-entity pipeline: it feeds records at the configured rate, publishes pose, line-map
 // deltas, reference scans and the status heartbeat, and applies what the listeners enqueued
@@ -16,6 +17,7 @@
 #include "dds_endpoints.hpp"
 #include "dds_participant.hpp"
 #include "entity_options.hpp"
+#include "live_sensor_source.hpp"
 #include "pena/geometry/trajectory.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/pipeline/entity_pipeline.hpp"
@@ -99,6 +101,7 @@ class EntityService {
 
   EntityServiceOptions options_;
   std::unique_ptr<io::LogSource> source_;
+  LiveSensorSource* live_source_ = nullptr;  // source_ when the input is dds, else null
   std::vector<sensors::SensorRecord> read_ahead_;
   sensors::EntityKind kind_ = sensors::EntityKind::kRobot;
   std::string entity_id_;

@@ -1,5 +1,5 @@
 // pena-entity: the PeNa service of one firefighter or robot (docs/services.md). Reads a sensor
-// log at a chosen rate, runs the per-entity pipeline and talks DDS (docs/dds.md). Exits 0 when
+// log at a chosen rate or the live sensor topics (--input dds), runs the per-entity pipeline and talks DDS (docs/dds.md). Exits 0 when
 // the input ended or a signal stopped it cleanly, 1 on bad options or input, 2 on a DDS failure.
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -22,6 +22,7 @@ struct Overrides {
   std::string config, input, entity_id, kind, output_dir, participant_profile, log_level, plan;
   std::vector<std::string> profiles_files;
   std::optional<double> rate, wait_for_readers_s, linger_s, await_corrections_s;
+  std::optional<double> reorder_window_s, idle_timeout_s;
   std::optional<int> domain_id;
   bool record = false;
   bool start_unknown = false;
@@ -29,7 +30,15 @@ struct Overrides {
 
 void AddOptions(CLI::App& app, Overrides& o) {
   app.add_option("--config", o.config, "Config file (Protobuf text format, EntityConfig)");
-  app.add_option("--input", o.input, "sensors.penalog, its entity directory, or a CARMEN log");
+  app.add_option("--input", o.input,
+                 "sensors.penalog, its entity directory, a CARMEN log, or dds: the live sensor "
+                 "topics of --entity-id (./dds for a file named dds)");
+  app.add_option("--reorder-window", o.reorder_window_s,
+                 "--input dds: sensor seconds a record waits for older records of other topics "
+                 "(default 0.2)");
+  app.add_option("--idle-timeout", o.idle_timeout_s,
+                 "--input dds: end after this many wall seconds without a sample (default 0: "
+                 "wait for the end-of-stream marker or a signal)");
   app.add_option("--plan", o.plan,
                  "A priori plan (CSV, SVG or DXF, mission frame): localise against it");
   app.add_option("--entity-id", o.entity_id, "Entity id on the topics (default: the log's)");
@@ -60,7 +69,11 @@ EntityServiceOptions BuildOptions(const Overrides& o) {
   }
   EntityServiceOptions options = pena::services::EntityOptionsFromConfig(config, o.config);
   if (!o.input.empty()) options.input = o.input;
-  if (std::filesystem::is_directory(options.input)) options.input /= "sensors.penalog";
+  if (!pena::services::IsLiveInput(options.input) && std::filesystem::is_directory(options.input)) {
+    options.input /= "sensors.penalog";
+  }
+  if (o.reorder_window_s) options.live.merge.reorder_window_s = *o.reorder_window_s;
+  if (o.idle_timeout_s) options.live.idle_timeout_s = *o.idle_timeout_s;
   if (!o.plan.empty()) options.plan = o.plan;
   if (!o.entity_id.empty()) options.entity_id = o.entity_id;
   if (!o.kind.empty()) {

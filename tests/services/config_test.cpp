@@ -31,6 +31,28 @@ TEST(ConfigLoader, ReadsAValidEntityConfigAndResolvesPathsAgainstIt) {
   EXPECT_NO_THROW(ValidateEntityOptions(options));
 }
 
+TEST(ConfigLoader, LiveInputIsReadAndValidatedStrictly) {
+  const auto path = Write("live.conf",
+                          "input: \"dds\"\nentity_id: \"ff1\"\n"
+                          "live_input { reorder_window_s: 0.5 idle_timeout_s: 30 }\n");
+  EntityServiceOptions options =
+      EntityOptionsFromConfig(LoadTextConfig<config::EntityConfig>(path), path);
+  EXPECT_TRUE(IsLiveInput(options.input));  // not resolved against the config's directory
+  EXPECT_DOUBLE_EQ(options.live.merge.reorder_window_s, 0.5);
+  EXPECT_DOUBLE_EQ(options.live.idle_timeout_s, 30.0);
+  EXPECT_DOUBLE_EQ(options.live.end_grace_s, 2.0);
+  EXPECT_NO_THROW(ValidateEntityOptions(options));
+  options.live.merge.reorder_window_s = -1.0;
+  EXPECT_THROW(ValidateEntityOptions(options), std::invalid_argument);
+  options.live.merge.reorder_window_s = 0.2;
+  options.entity_id.clear();  // whose samples?
+  EXPECT_THROW(ValidateEntityOptions(options), std::invalid_argument);
+  // live_input with a file input is a mistake, named with the file.
+  const auto wrong = Write("wrong.conf", "input: \"ff1.penalog\"\nlive_input { }\n");
+  EXPECT_THROW(EntityOptionsFromConfig(LoadTextConfig<config::EntityConfig>(wrong), wrong),
+               io::InputError);
+}
+
 TEST(ConfigLoader, UnknownKeyIsAnErrorNamingFileAndLine) {
   const auto path = Write("typo.conf", "input: \"x\"\n\nrat: 10\n");
   try {

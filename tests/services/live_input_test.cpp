@@ -1,0 +1,208 @@
+// pena-entity --input dds fed by pena-sensor-replay, all real processes on loopback DDS: a short
+// mission with a firefighter and a robot is replayed onto the live sensor topics (both entities
+// in one domain, so each entity sees and ignores the other's samples), and each entity's
+// trajectory.tum is compared with a pena-entity run reading the same log from its file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pena/geometry/pose2.hpp"
+#include "pena/io/trajectory_io.hpp"
+#include "pena/sim/mission_writer.hpp"
+#include "pena/sim/scenario.hpp"
+#include "pena/sim/simulator.hpp"
+#include "process_support.hpp"
+#include "service_test_support.hpp"
+
+namespace pena::services {
+namespace {
+
+// The corridor of the entity process tests with a firefighter walking it and a robot behind:
+// about 25 s of mission time, so every sensor topic (gyro, compass, stride; wheel odometry;
+// scans) carries samples.
+constexpr const char* kScenario = R"scn(pena-scenario 1
+name live_input_test
+ceiling 2.7
+rect 0 0 24 8
+wall 0 4 5 4
+wall 6 4 13 4
+wall 14 4 24 4
+wall 12 4 12 8
+entity ff1 human 2 2 0 speed=0.9
+waypoint ff1 20 2
+waypoint ff1 20 1.5
+entity robot1 robot 2 1.5 0 speed=0.8
+waypoint robot1 14 1.5
+)scn";
+
+const std::filesystem::path& MissionDir() {
+  static const std::filesystem::path dir = [] {
+    const sim::Scenario scenario = sim::ParseScenario(kScenario, "test:live_input");
+    const sim::SimulationResult result = sim::Simulator{sim::SimulationOptions{}}.Run(scenario);
+    const std::filesystem::path out = testing::ScratchDir("live-mission");
+    sim::WriteMission(scenario, result, out, "live_input_test");
+    return out;
+  }();
+  return dir;
+}
+
+std::vector<std::string> DdsArgs(int domain) {
+  const std::filesystem::path dds = std::filesystem::path(PENA_SOURCE_DIR) / "deploy" / "dds";
+  return {"--domain", std::to_string(domain), "--profiles-file",
+          (dds / "pena-loopback.xml").string(), "--profiles-file", (dds / "pena-qos.xml").string()};
+}
+
+std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+struct Process {
+  std::filesystem::path out;
+  pid_t pid = -1;
+};
+
+// pena-entity on the entity's log file, as fast as it runs.
+Process StartFileEntity(const std::string& id, int domain, const std::filesystem::path& root) {
+  Process run{root / ("file-" + id)};
+  std::filesystem::create_directories(run.out);
+  run.pid = testing::Spawn(Concat({PENA_ENTITY_BIN, "--input", (MissionDir() / id).string(),
+                                   "--rate", "0", "--out", run.out.string(), "--linger", "0"},
+                                  DdsArgs(domain)),
+                           run.out / "entity.log");
+  return run;
+}
+
+// pena-entity on the live topics. The reorder window is 1 s of sensor time (0.25 s of wall
+// time at the replay's rate 4): wider than the default 0.2 s so a loaded CI machine delaying
+// one topic cannot make a record late and the comparison with the file run exact.
+Process StartLiveEntity(const std::string& id, std::vector<std::string> extra, int domain,
+                    const std::filesystem::path& root) {
+  Process run{root / ("live-" + id)};
+  std::filesystem::create_directories(run.out);
+  std::vector<std::string> args = {PENA_ENTITY_BIN, "--input", "dds", "--entity-id", id,
+                                   "--out", run.out.string(), "--reorder-window", "1.0",
+                                   "--idle-timeout", "60", "--linger", "0"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  run.pid = testing::Spawn(Concat(args, DdsArgs(domain)), run.out / "entity.log");
+  return run;
+}
+
+Process StartReplay(const std::string& id, int domain, const std::filesystem::path& root) {
+  Process run{root / ("replay-" + id)};
+  std::filesystem::create_directories(run.out);
+  run.pid = testing::Spawn(Concat({PENA_SENSOR_REPLAY_BIN, "--input", (MissionDir() / id).string(),
+                                   "--rate", "4", "--wait-for-readers", "30"},
+                                  DdsArgs(domain)),
+                           run.out / "replay.log");
+  return run;
+}
+
+std::string ExpectExitZero(const Process& run, const char* log_name) {
+  const int code = testing::WaitExit(run.pid, 120.0);
+  const std::string log = testing::ReadFile(run.out / log_name);
+  EXPECT_EQ(code, 0) << log;
+  return log;
+}
+
+// Largest position and heading difference between two trajectories of equal length, with their
+// stamps equal.
+void ExpectSameTrajectory(const std::string& id, const geometry::Trajectory& file,
+                          const geometry::Trajectory& live) {
+  ASSERT_EQ(live.size(), file.size()) << id;
+  ASSERT_GT(file.size(), 40u) << id;
+  double max_position_m = 0.0;
+  double max_heading_rad = 0.0;
+  for (std::size_t i = 0; i < file.size(); ++i) {
+    ASSERT_EQ(live[i].stamp_s, file[i].stamp_s) << id << " pose " << i;
+    const geometry::Pose2& a = file[i].pose;
+    const geometry::Pose2& b = live[i].pose;
+    max_position_m = std::max(max_position_m, std::hypot(a.x_m - b.x_m, a.y_m - b.y_m));
+    max_heading_rad =
+        std::max(max_heading_rad, std::abs(geometry::NormalizeAngle(a.theta_rad - b.theta_rad)));
+  }
+  std::cout << id << ": " << file.size() << " poses, largest difference live vs file "
+            << max_position_m << " m, " << max_heading_rad << " rad\n";
+  // The same records in the same order through the same deterministic chain: the same poses.
+  EXPECT_EQ(max_position_m, 0.0) << id;
+  EXPECT_EQ(max_heading_rad, 0.0) << id;
+}
+
+TEST(LiveInput, ReplayedSensorTopicsGiveTheTrajectoryOfTheFileRun) {
+  const int file_domain = testing::TestDomain(40);
+  const int live_domain = testing::TestDomain(50);
+  testing::UseLoopbackByDefault();
+  const std::filesystem::path root = testing::ScratchDir("live-input");
+  MissionDir();
+  // The live entities first: the replays wait until every sensor topic has their readers.
+  const Process live_ff1 = StartLiveEntity("ff1", {"--kind", "human"}, live_domain, root);
+  const Process live_robot = StartLiveEntity("robot1", {}, live_domain, root);  // kind from the marker
+  ASSERT_GT(live_ff1.pid, 0);
+  ASSERT_GT(live_robot.pid, 0);
+  const Process replay_ff1 = StartReplay("ff1", live_domain, root);
+  const Process replay_robot = StartReplay("robot1", live_domain, root);
+  const std::string replay_log = ExpectExitZero(replay_ff1, "replay.log");
+  ExpectExitZero(replay_robot, "replay.log");
+  const std::string ff1_log = ExpectExitZero(live_ff1, "entity.log");
+  const std::string robot_log = ExpectExitZero(live_robot, "entity.log");
+  // The file runs after, so the two pairs do not share the two cores.
+  const Process file_ff1 = StartFileEntity("ff1", file_domain, root);
+  const Process file_robot = StartFileEntity("robot1", file_domain, root);
+  ExpectExitZero(file_ff1, "entity.log");
+  ExpectExitZero(file_robot, "entity.log");
+
+  // Every topic of the entity's kind arrived whole, nothing was late or refused, and the other
+  // entity's samples were ignored.
+  EXPECT_NE(ff1_log.find("live input ended (end marker)"), std::string::npos) << ff1_log;
+  EXPECT_NE(ff1_log.find("(human)"), std::string::npos) << ff1_log;
+  EXPECT_NE(robot_log.find("(robot)"), std::string::npos) << robot_log;
+  EXPECT_NE(ff1_log.find("start pose from ground truth"), std::string::npos) << ff1_log;
+  for (const char* topic : {"gyro", "compass", "stride", "scan"}) {
+    EXPECT_NE(ff1_log.find(std::string("pena/sensors/") + topic), std::string::npos)
+        << topic << "\n" << ff1_log;
+  }
+  EXPECT_NE(robot_log.find("pena/sensors/wheel_odometry"), std::string::npos) << robot_log;
+  for (const std::string& log : {ff1_log, robot_log}) {
+    EXPECT_EQ(log.find("late on this topic"), std::string::npos) << log;
+    EXPECT_EQ(log.find("refused"), log.find("refused, 0 late")) << log;
+    EXPECT_EQ(log.find(" 0 samples of other entities ignored"), std::string::npos) << log;
+  }
+  EXPECT_NE(replay_log.find("and the end marker"), std::string::npos) << replay_log;
+
+  ExpectSameTrajectory("ff1", io::ReadTum(file_ff1.out / "trajectory.tum"),
+                       io::ReadTum(live_ff1.out / "trajectory.tum"));
+  ExpectSameTrajectory("robot1", io::ReadTum(file_robot.out / "trajectory.tum"),
+                       io::ReadTum(live_robot.out / "trajectory.tum"));
+}
+
+TEST(LiveInput, EndsOnTheIdleTimeoutAndRefusesAMissingEntityId) {
+  testing::UseLoopbackByDefault();
+  const int domain = testing::TestDomain(60);
+  const std::filesystem::path root = testing::ScratchDir("live-idle");
+  // No publisher: the idle timeout ends the input before any record, a clear error, exit 1.
+  const pid_t idle = testing::Spawn(
+      Concat({PENA_ENTITY_BIN, "--input", "dds", "--entity-id", "ff9", "--idle-timeout", "1"},
+             DdsArgs(domain)),
+      root / "idle.log");
+  EXPECT_EQ(testing::WaitExit(idle, 30.0), 1);
+  const std::string idle_log = testing::ReadFile(root / "idle.log");
+  EXPECT_NE(idle_log.find("no sensor record for ff9"), std::string::npos) << idle_log;
+  EXPECT_NE(idle_log.find("idle timeout"), std::string::npos) << idle_log;
+  // Without --entity-id the live input does not know whose samples to take.
+  const pid_t anonymous =
+      testing::Spawn(Concat({PENA_ENTITY_BIN, "--input", "dds"}, DdsArgs(domain)),
+                     root / "anonymous.log");
+  EXPECT_EQ(testing::WaitExit(anonymous, 30.0), 1);
+  EXPECT_NE(testing::ReadFile(root / "anonymous.log").find("--entity-id"), std::string::npos)
+      << testing::ReadFile(root / "anonymous.log");
+  const pid_t window = testing::Spawn(
+      Concat({PENA_ENTITY_BIN, "--input", "dds", "--entity-id", "ff1", "--reorder-window", "-1"},
+             DdsArgs(domain)),
+      root / "window.log");
+  EXPECT_EQ(testing::WaitExit(window, 30.0), 1);
+  EXPECT_NE(testing::ReadFile(root / "window.log").find("reorder_window_s"), std::string::npos)
+      << testing::ReadFile(root / "window.log");
+}
+
+}  // namespace
+}  // namespace pena::services
