@@ -132,14 +132,25 @@ void EntityService::LoadPlan() {
   pipeline_->SetPlan(std::move(plan));
 }
 
+bool EntityService::FusionMatched() const {
+  // Each endpoint pair matches on its own: a reference scan written before the fusion's scan
+  // reader matched is lost (volatile), and in lockstep its answer would then be awaited in vain.
+  // So the wait covers every endpoint the fusion's first answer travels through.
+  if (delta_writer_.matched() == 0) return false;
+  if (options_.await_corrections_s <= 0.0) return true;
+  return scan_writer_.matched() > 0 && correction_reader_.matched() > 0;
+}
+
 void EntityService::WaitForReaders() {
   const std::int64_t until_ns = NowNs() + SecondsToNs(options_.wait_for_readers_s);
-  while (delta_writer_.matched() == 0 && NowNs() < until_ns && !StopRequested()) {
+  while (!FusionMatched() && NowNs() < until_ns && !StopRequested()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  if (options_.wait_for_readers_s > 0.0 && delta_writer_.matched() == 0) {
-    spdlog::warn("{}: no line-map reader matched within {} s; starting anyway", entity_id_,
-                 options_.wait_for_readers_s);
+  if (options_.wait_for_readers_s > 0.0 && !FusionMatched()) {
+    spdlog::warn("{}: the fusion's readers did not all match within {} s (line map {}, reference "
+                 "scans {}, corrections {}); starting anyway",
+                 entity_id_, options_.wait_for_readers_s, delta_writer_.matched(),
+                 scan_writer_.matched(), correction_reader_.matched());
   }
 }
 

@@ -70,6 +70,7 @@ class EntityService {
   void LoadPlan();
   // --record: the recording directory and its native sensor log (header from the input).
   void StartRecording();
+  bool FusionMatched() const;
   void WaitForReaders();
   // Handles queued events, waiting for new ones until `until_ns` (system clock; 0 = no wait).
   void DrainInbox(std::int64_t until_ns);

@@ -57,7 +57,7 @@ void AddOptions(CLI::App& app, Overrides& o) {
   app.add_option("--profile", o.participant_profile, "Participant profile (default pena_loopback)");
   app.add_option("--profiles-file", o.profiles_files, "DDS XML profile file (repeatable)");
   app.add_option("--wait-for-readers", o.wait_for_readers_s,
-                 "Wait up to this many seconds for a line-map reader before starting");
+                 "Wait up to this many seconds for the fusion's readers before starting");
   app.add_option("--linger", o.linger_s, "Seconds to wait for acknowledgements at the end");
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error");
 }
