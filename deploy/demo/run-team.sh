@@ -9,7 +9,9 @@
 # (1), PENA_DEMO_MISSION (reuse an existing `pena simulate` output instead of simulating),
 # PENA_DDS_DOMAIN (default: the first free of 30..99, locked with /tmp/pena-dds-domain-N.lock),
 # PENA_FUSION_ARGS (extra pena-fusion options, e.g. --no-corrections or --raw-corrections to
-# compare with the filtered corrections).
+# compare with the filtered corrections), PENA_DEMO_LOCKSTEP (1: fusion and entities in lockstep,
+# so the corrections and the map do not depend on the machine's load; 0: free-running, as a real
+# deployment; off by itself with --no-corrections, where there is no answer to wait for).
 # Every process started here is stopped on exit (normal, error, Ctrl-C); nothing is left running.
 set -euo pipefail
 
@@ -17,6 +19,8 @@ REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 BUILD=${PENA_BUILD:-$REPO/build}
 OUT=${1:?usage: run-team.sh OUT_DIR}
 RATE=${PENA_DEMO_RATE:-5}
+LOCKSTEP=${PENA_DEMO_LOCKSTEP:-1}
+[[ " ${PENA_FUSION_ARGS:-} " == *" --no-corrections "* ]] && LOCKSTEP=0
 SEED=${PENA_DEMO_SEED:-1}
 PENA=$BUILD/tools/pena/pena
 FUSION_BIN=$BUILD/services/fusion/pena-fusion
@@ -72,8 +76,14 @@ cat > "$OUT/fusion.conf" <<CONF
 state_dir: "fusion/state"
 plan: "$MISSION/apriori.csv"
 output_dir: "fusion"
-# Attempt a correction at most every 0.2 wall s per entity (1 s of mission time at rate 5).
-correction_interval_s: 0.2
+$(if ((LOCKSTEP)); then
+  echo "# Lockstep: attempt a correction at most every 1.2 s of mission time per entity; every"
+  echo "# entity waits for the answer (--await-corrections 1.2), so a busy machine cannot drop one."
+  echo "correction_interval_s: 1.2"
+else
+  echo "# Attempt a correction at most every 0.2 wall s per entity (1 s of mission time at rate 5)."
+  echo "correction_interval_s: 0.2"
+fi)
 dds {
   profiles_files: "$DDS_DIR/pena-loopback.xml"
   profiles_files: "$DDS_DIR/pena-qos.xml"
@@ -81,9 +91,16 @@ dds {
 }
 CONF
 
-echo "== pena-fusion (DDS domain $DOMAIN, loopback only)"
+FUSION_ARGS=()
+ENTITY_ARGS=()
+if ((LOCKSTEP)); then
+  FUSION_ARGS=(--lockstep)
+  ENTITY_ARGS=(--await-corrections 1.2)
+fi
+echo "== pena-fusion (DDS domain $DOMAIN, loopback only$( ((LOCKSTEP)) && echo ", lockstep"))"
 # shellcheck disable=SC2086  # PENA_FUSION_ARGS is a list of options
-"$FUSION_BIN" --config "$OUT/fusion.conf" ${PENA_FUSION_ARGS:-} > "$OUT/logs/fusion.log" 2>&1 &
+"$FUSION_BIN" --config "$OUT/fusion.conf" "${FUSION_ARGS[@]}" ${PENA_FUSION_ARGS:-} \
+  > "$OUT/logs/fusion.log" 2>&1 &
 FUSION_PID=$!
 PIDS+=("$FUSION_PID")
 
@@ -96,7 +113,7 @@ for dir in "$MISSION"/*/; do
   rm -rf "${OUT:?}/$id"
   "$ENTITY_BIN" --input "$dir" --rate "$RATE" --out "$OUT/$id" --domain "$DOMAIN" \
     --profiles-file "$DDS_DIR/pena-loopback.xml" --profiles-file "$DDS_DIR/pena-qos.xml" \
-    --wait-for-readers 20 --linger 5 > "$OUT/logs/$id.log" 2>&1 &
+    --wait-for-readers 20 --linger 5 "${ENTITY_ARGS[@]}" > "$OUT/logs/$id.log" 2>&1 &
   ENTITY_PIDS+=("$!")
   PIDS+=("$!")
 done
