@@ -163,7 +163,12 @@ EntityRunSummary EntityService::Run() {
   std::size_t ahead = 0;
   // Live input: the sensors pace the stream; while it waits for them the inbox and the
   // heartbeat are served as between records.
-  if (live_source_) live_source_->SetWaitHook([this] { DrainInbox(0); });
+  if (live_source_) {
+    live_source_->SetWaitHook([this] {
+      DrainInbox(0);
+      HeartbeatIfDue();
+    });
+  }
   while (!StopRequested()) {
     std::optional<sensors::SensorRecord> record;
     if (ahead < read_ahead_.size()) {

@@ -16,6 +16,10 @@ namespace {
 
 // Next() wakes at least this often to call the wait hook and look at signals and timeouts.
 constexpr auto kPoll = std::chrono::milliseconds(50);
+// Samples taken from the queue between two looks at the window, signals and timeouts.
+constexpr int kMaxBatch = 1024;
+// Wall seconds beyond which a timeout would overflow the nanosecond clock arithmetic.
+constexpr double kMaxTimeoutS = 1e6;
 
 std::int64_t SecondsToNs(double seconds) { return static_cast<std::int64_t>(seconds * 1e9); }
 
@@ -49,33 +53,33 @@ void ValidateLiveSensorOptions(const LiveSensorOptions& options) {
   require(std::isfinite(window_s) && window_s >= 0.0 && window_s <= 60.0,
           "live_input.reorder_window_s must be in [0, 60] s of sensor time, got " +
               std::to_string(window_s));
-  require(std::isfinite(options.idle_timeout_s) && options.idle_timeout_s >= 0.0,
-          "live_input.idle_timeout_s must be >= 0 s (0 = none), got " +
+  require(std::isfinite(options.idle_timeout_s) && options.idle_timeout_s >= 0.0 &&
+              options.idle_timeout_s <= kMaxTimeoutS,
+          "live_input.idle_timeout_s must be in [0, 1e6] s (0 = none), got " +
               std::to_string(options.idle_timeout_s));
-  require(std::isfinite(options.end_grace_s) && options.end_grace_s > 0.0,
-          "live_input.end_grace_s must be > 0 s, got " + std::to_string(options.end_grace_s));
+  require(std::isfinite(options.end_grace_s) && options.end_grace_s > 0.0 &&
+              options.end_grace_s <= kMaxTimeoutS,
+          "live_input.end_grace_s must be in (0, 1e6] s, got " + std::to_string(options.end_grace_s));
 }
 
 LiveSensorSource::LiveSensorSource(Participant& participant, LiveSensorOptions options)
     : options_((ValidateLiveSensorOptions(options), std::move(options))),
       merger_(options_.merge),
       scan_reader_(participant, topics::kSensorScan,
-                   [this](pena_dds::LaserScanSample&& s, const SampleMeta&) {
-                     queue_.Push(std::move(s));
-                   }),
+                   [this](pena_dds::LaserScanSample&& s, const SampleMeta&) { Enqueue(std::move(s)); }),
       gyro_reader_(participant, topics::kSensorGyro,
-                   [this](pena_dds::GyroSample&& s, const SampleMeta&) { queue_.Push(s); }),
+                   [this](pena_dds::GyroSample&& s, const SampleMeta&) { Enqueue(std::move(s)); }),
       compass_reader_(participant, topics::kSensorCompass,
-                      [this](pena_dds::CompassSample&& s, const SampleMeta&) { queue_.Push(s); }),
+                      [this](pena_dds::CompassSample&& s, const SampleMeta&) { Enqueue(std::move(s)); }),
       stride_reader_(participant, topics::kSensorStride,
-                     [this](pena_dds::StrideSample&& s, const SampleMeta&) { queue_.Push(s); }),
+                     [this](pena_dds::StrideSample&& s, const SampleMeta&) { Enqueue(std::move(s)); }),
       wheel_reader_(participant, topics::kSensorWheelOdometry,
                     [this](pena_dds::WheelOdometrySample&& s, const SampleMeta&) {
-                      queue_.Push(s);
+                      Enqueue(std::move(s));
                     }),
       status_reader_(participant, topics::kSensorStatus,
                      [this](pena_dds::SensorStreamStatus&& s, const SampleMeta&) {
-                       queue_.Push(std::move(s));
+                       Enqueue(std::move(s));
                      }) {
   description_.path = kLiveInput;
   description_.format = kLiveInput;
@@ -84,6 +88,17 @@ LiveSensorSource::LiveSensorSource(Participant& participant, LiveSensorOptions o
 }
 
 LiveSensorSource::~LiveSensorSource() = default;
+
+template <class Sample>
+void LiveSensorSource::Enqueue(Sample&& sample) {
+  // Every entity's samples reach every reader (one keyed topic per sensor): drop the others on
+  // the listener's thread so that a busy domain does not fill this entity's queue.
+  if (sample.entity_id().to_string() != options_.entity_id) {
+    other_entity_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  queue_.Push(std::forward<Sample>(sample));
+}
 
 std::size_t LiveSensorSource::skipped() const {
   std::size_t out = 0;
@@ -111,8 +126,11 @@ std::optional<sensors::SensorRecord> LiveSensorSource::Next() {
     }
     if (std::optional<Item> item = queue_.PopFor(kPoll)) {
       if (Take(std::move(*item))) last_sample_ns_ = NowNs();
-      // Take everything already queued before looking at the window again.
-      while (std::optional<Item> more = queue_.TryPop()) {
+      // Take what is queued before looking at the window again, but a bounded batch: under a
+      // flood the loop must still reach the signal and end checks.
+      for (int taken = 1; taken < kMaxBatch; ++taken) {
+        std::optional<Item> more = queue_.TryPop();
+        if (!more) break;
         if (Take(std::move(*more))) last_sample_ns_ = NowNs();
       }
     } else if (wait_hook_) {
@@ -211,6 +229,11 @@ void LiveSensorSource::TakeStatus(const pena_dds::SensorStreamStatus& status) {
     }
     return;
   }
+  if (status.state() != pena_dds::SENSORS_ENDED) {
+    spdlog::warn("{}: {} marker with unknown state {} ignored", options_.entity_id,
+                 topics::kSensorStatus.name, static_cast<int>(status.state()));
+    return;
+  }
   if (!end_marker_) {
     end_marker_ = status;
     end_deadline_ns_ = NowNs() + SecondsToNs(options_.end_grace_s);
@@ -262,7 +285,7 @@ void LiveSensorSource::LogSummary() const {
   spdlog::info("{}: live input ended ({}): {} records to the chain{}; {} NaN or negative ranges made "
                "no-returns; {} samples of other entities ignored",
                options_.entity_id, end_reason_, counts_.released + merger_.held(), topics,
-               counts_.bad_ranges, counts_.other_entity);
+               counts_.bad_ranges, counts_.other_entity + other_entity_.load());
 }
 
 }  // namespace pena::services

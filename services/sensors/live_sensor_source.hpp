@@ -5,6 +5,7 @@
 // end-of-stream marker, a stop signal or an idle timeout.
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -70,6 +71,9 @@ class LiveSensorSource : public io::LogSource {
                             pena_dds::CompassSample, pena_dds::StrideSample,
                             pena_dds::WheelOdometrySample, pena_dds::SensorStreamStatus>;
 
+  // Listener threads: queues a sample of this entity, counts and drops the others'.
+  template <class Sample>
+  void Enqueue(Sample&& sample);
   // Takes one queued sample; true if it was for this entity.
   bool Take(Item item);
   template <class Sample>
@@ -93,6 +97,7 @@ class LiveSensorSource : public io::LogSource {
   bool ended_ = false;
   std::string end_reason_;
 
+  std::atomic<std::size_t> other_entity_{0};  // dropped by the listeners
   WorkQueue<Item> queue_;
   Reader<pena_dds::LaserScanSamplePubSubType> scan_reader_;
   Reader<pena_dds::GyroSamplePubSubType> gyro_reader_;

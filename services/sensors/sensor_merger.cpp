@@ -25,6 +25,7 @@ SensorMerger::SensorMerger(SensorMergerOptions options) : options_(options) {
     throw std::invalid_argument("reorder_window_s must be a finite number >= 0 s, got " +
                                 std::to_string(options_.reorder_window_s));
   }
+  if (options_.max_held < 1) throw std::invalid_argument("max_held must be >= 1 record, got 0");
 }
 
 bool SensorMerger::Key::operator<(const Key& other) const {
@@ -57,7 +58,8 @@ bool SensorMerger::Add(TopicRecord record) {
 
 std::optional<TopicRecord> SensorMerger::PopReady() {
   if (held_.empty()) return std::nullopt;
-  if (newest_stamp_s_ - sensors::StampOf(held_.front().record) < options_.reorder_window_s) {
+  if (held_.size() <= options_.max_held &&
+      newest_stamp_s_ - sensors::StampOf(held_.front().record) < options_.reorder_window_s) {
     return std::nullopt;
   }
   return PopOldest();

@@ -34,6 +34,10 @@ struct SensorMergerOptions {
   // Sensor seconds a record is held for records of other topics that may still arrive older.
   // >= 0 and finite; 0 releases in arrival order (refusing only what goes back in time).
   double reorder_window_s = 0.2;
+  // Records held at most; beyond it the oldest is released whatever the window. A publisher
+  // whose clock stands still never lets a record become ready, and held records must not grow
+  // without bound. >= 1; the default holds 100 s of a 100 Hz sensor.
+  std::size_t max_held = 10000;
 };
 
 // Per topic: records taken and records refused as too late.
@@ -49,7 +53,8 @@ class SensorMerger {
 
   // Holds `record`; false (counted late, not held) if it sorts before a released record.
   bool Add(TopicRecord record);
-  // The oldest held record once a record reorder_window_s newer arrived; nullopt otherwise.
+  // The oldest held record once a record reorder_window_s newer arrived, or more than max_held
+  // are held; nullopt otherwise.
   std::optional<TopicRecord> PopReady();
   // The oldest held record whatever the window (the stream ended); nullopt when none is held.
   std::optional<TopicRecord> PopOldest();

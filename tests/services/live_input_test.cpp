@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <regex>
 
 #include "pena/geometry/pose2.hpp"
 #include "pena/io/trajectory_io.hpp"
@@ -135,8 +136,9 @@ TEST(LiveInput, ReplayedSensorTopicsGiveTheTrajectoryOfTheFileRun) {
   const std::filesystem::path root = testing::ScratchDir("live-input");
   MissionDir();
   // The live entities first: the replays wait until every sensor topic has their readers.
-  const Process live_ff1 = StartLiveEntity("ff1", {"--kind", "human"}, live_domain, root);
-  const Process live_robot = StartLiveEntity("robot1", {}, live_domain, root);  // kind from the marker
+  // ff1's kind comes from the start marker (human: not the default, robot), robot1's is given.
+  const Process live_ff1 = StartLiveEntity("ff1", {}, live_domain, root);
+  const Process live_robot = StartLiveEntity("robot1", {"--kind", "robot"}, live_domain, root);
   ASSERT_GT(live_ff1.pid, 0);
   ASSERT_GT(live_robot.pid, 0);
   const Process replay_ff1 = StartReplay("ff1", live_domain, root);
@@ -164,7 +166,7 @@ TEST(LiveInput, ReplayedSensorTopicsGiveTheTrajectoryOfTheFileRun) {
   EXPECT_NE(robot_log.find("pena/sensors/wheel_odometry"), std::string::npos) << robot_log;
   for (const std::string& log : {ff1_log, robot_log}) {
     EXPECT_EQ(log.find("late on this topic"), std::string::npos) << log;
-    EXPECT_EQ(log.find("refused"), log.find("refused, 0 late")) << log;
+    EXPECT_FALSE(std::regex_search(log, std::regex("[1-9][0-9]* refused"))) << log;
     EXPECT_EQ(log.find(" 0 samples of other entities ignored"), std::string::npos) << log;
   }
   EXPECT_NE(replay_log.find("and the end marker"), std::string::npos) << replay_log;

@@ -99,6 +99,20 @@ TEST(SensorMerger, KeepsThePublishersOrderForEqualStamps) {
   EXPECT_TRUE(merger.Add(Stride(2.0, 10)));
 }
 
+TEST(SensorMerger, ReleasesTheOldestWhenMoreThanMaxHeldWaitWhateverTheWindow) {
+  // A publisher whose clock stands still: no record is ever reorder_window_s old.
+  SensorMerger merger({0.2, 3});
+  for (std::uint64_t seq = 1; seq <= 3; ++seq) EXPECT_TRUE(merger.Add(Gyro(5.0, seq)));
+  EXPECT_FALSE(merger.PopReady().has_value());  // three held: within the bound
+  EXPECT_TRUE(merger.Add(Gyro(5.0, 4)));
+  const std::optional<TopicRecord> forced = merger.PopReady();
+  ASSERT_TRUE(forced.has_value());
+  EXPECT_EQ(forced->seq, 1u);  // the oldest, in the publisher's order
+  EXPECT_EQ(merger.held(), 3u);
+  EXPECT_FALSE(merger.PopReady().has_value());
+  EXPECT_THROW(SensorMerger({0.2, 0}), std::invalid_argument);
+}
+
 TEST(SensorMerger, RefusesAWindowThatIsNegativeOrNotFinite) {
   EXPECT_THROW(SensorMerger({-0.1}), std::invalid_argument);
   EXPECT_THROW(SensorMerger({std::nan("")}), std::invalid_argument);
