@@ -11,6 +11,7 @@
 #include "entity_options.hpp"
 #include "entity_service.hpp"
 #include "logging.hpp"
+#include "pena/io/input_error.hpp"
 #include "signals.hpp"
 
 namespace {
@@ -131,6 +132,15 @@ int main(int argc, char** argv) {
   } catch (const pena::services::DdsError& error) {
     spdlog::critical("DDS failure: {}", error.what());
     return 2;
+  } catch (const pena::io::InputError& error) {
+    // A signal while the live input waits for its first record ends the stream with nothing
+    // read: a clean stop, as a signal is at any later point.
+    if (pena::services::StopRequested()) {
+      spdlog::info("stopped by a signal before the first record ({})", error.what());
+      return EXIT_SUCCESS;
+    }
+    spdlog::critical("{}", error.what());
+    return EXIT_FAILURE;
   } catch (const std::exception& error) {
     spdlog::critical("{}", error.what());
     return EXIT_FAILURE;

@@ -4,7 +4,10 @@
 // trajectory.tum is compared with a pena-entity run reading the same log from its file.
 #include <gtest/gtest.h>
 
+#include <csignal>
+#include <chrono>
 #include <cmath>
+#include <thread>
 #include <regex>
 
 #include "pena/geometry/pose2.hpp"
@@ -204,6 +207,23 @@ TEST(LiveInput, EndsOnTheIdleTimeoutAndRefusesAMissingEntityId) {
   EXPECT_EQ(testing::WaitExit(window, 30.0), 1);
   EXPECT_NE(testing::ReadFile(root / "window.log").find("reorder_window_s"), std::string::npos)
       << testing::ReadFile(root / "window.log");
+}
+
+TEST(LiveInput, ASignalBeforeTheFirstRecordIsACleanStop) {
+  testing::UseLoopbackByDefault();
+  const int domain = testing::TestDomain(61);
+  const std::filesystem::path root = testing::ScratchDir("live-signal");
+  // No publisher and no idle timeout: the entity waits for its first record until SIGTERM.
+  const pid_t waiting = testing::Spawn(
+      Concat({PENA_ENTITY_BIN, "--input", "dds", "--entity-id", "ff9"}, DdsArgs(domain)),
+      root / "signal.log");
+  ASSERT_GT(waiting, 0);
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  ASSERT_EQ(kill(waiting, SIGTERM), 0);
+  EXPECT_EQ(testing::WaitExit(waiting, 30.0), 0) << testing::ReadFile(root / "signal.log");
+  EXPECT_NE(testing::ReadFile(root / "signal.log").find("stopped by a signal before the first record"),
+            std::string::npos)
+      << testing::ReadFile(root / "signal.log");
 }
 
 }  // namespace
