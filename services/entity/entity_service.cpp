@@ -11,6 +11,7 @@
 #include "pena/io/plan_reader.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/pipeline/start_pose.hpp"
+#include "log_start.hpp"
 #include "signals.hpp"
 #include "to_dds.hpp"
 
@@ -91,11 +92,8 @@ EntityService::~EntityService() {
 }
 
 void EntityService::ReadAhead() {
-  // Up to the first scan: the start pose and the first stamp come from there.
-  while (auto record = source_->Next()) {
-    read_ahead_.push_back(std::move(*record));
-    if (std::holds_alternative<sensors::LaserScan>(read_ahead_.back())) break;
-  }
+  LogStart log_start = ReadLogStart(*source_, options_.input, options_.entity_id, options_.kind);
+  read_ahead_ = std::move(log_start.records);
   if (read_ahead_.empty()) {
     throw io::InputError(options_.input, 0,
                          live_source_ ? "no sensor record for " + options_.entity_id +
@@ -104,11 +102,8 @@ void EntityService::ReadAhead() {
                                       : std::string("the log holds no records"));
   }
   const io::LogDescription& description = source_->description();
-  kind_ = options_.kind.value_or(description.kind.value_or(sensors::EntityKind::kRobot));
-  const std::string file_name = options_.input.filename().string();
-  entity_id_ = !options_.entity_id.empty()         ? options_.entity_id
-               : !description.entity_id.empty() ? description.entity_id
-                                                : file_name.substr(0, file_name.find('.'));
+  kind_ = log_start.kind;
+  entity_id_ = std::move(log_start.entity_id);
   pena_dds::EntityPose probe;
   SetBounded(probe.entity_id(), entity_id_, "entity_id");
   // The live input states a known start as a ground-truth record too (LiveSensorSource).

@@ -9,6 +9,7 @@
 
 #include "pena/io/input_error.hpp"
 #include "pena/pipeline/start_pose.hpp"
+#include "log_start.hpp"
 #include "sensor_merger.hpp"
 #include "sensor_to_dds.hpp"
 #include "sensor_topics.hpp"
@@ -56,17 +57,11 @@ SensorReplay::~SensorReplay() = default;
 
 void SensorReplay::ReadAhead() {
   // Up to the first scan: the start pose comes from there, exactly as pena-entity takes it.
-  while (auto record = source_->Next()) {
-    read_ahead_.push_back(std::move(*record));
-    if (std::holds_alternative<sensors::LaserScan>(read_ahead_.back())) break;
-  }
+  LogStart log_start = ReadLogStart(*source_, options_.input, options_.entity_id, options_.kind);
+  read_ahead_ = std::move(log_start.records);
   if (read_ahead_.empty()) throw io::InputError(options_.input, 0, "the log holds no records");
-  const io::LogDescription& description = source_->description();
-  kind_ = options_.kind.value_or(description.kind.value_or(sensors::EntityKind::kRobot));
-  const std::string file_name = options_.input.filename().string();
-  entity_id_ = !options_.entity_id.empty()         ? options_.entity_id
-               : !description.entity_id.empty() ? description.entity_id
-                                                : file_name.substr(0, file_name.find('.'));
+  kind_ = log_start.kind;
+  entity_id_ = std::move(log_start.entity_id);
   summary_.entity_id = entity_id_;
 }
 
