@@ -15,9 +15,11 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cli_support.hpp"
+#include "odometry_settings.hpp"
 #include "commands.hpp"
 #include "pena/eval/stamp_matching.hpp"
 #include "pena/io/log_source.hpp"
@@ -60,15 +62,14 @@ geometry::Pose2 ParsePose(const std::string& text, const std::string& option) {
 }
 
 // Applies --set NAME=VALUE to the plan-matching options (names as in MapLocaliserOptions) and,
-// prefixed "odometry.", to the prior gate of the odometry underneath (issue 3 sweeps);
+// prefixed "odometry.", to the odometry underneath (the names of `pena odometry --set`);
 // integer options are rounded; unknown names are errors. The options are validated by
 // MapLocaliser's constructor as usual.
 void ApplySettings(const std::vector<std::string>& settings, localisation::MapLocaliserOptions& o,
                    odometry::LaserOdometryOptions& odometry) {
+  constexpr std::string_view kOdometry = "odometry.";
+  std::vector<std::string> odometry_settings;
   const std::map<std::string, double*> doubles = {
-      {"odometry.prior_gate_agree_gyro_m", &odometry.prior_gate_agree_gyro_m},
-      {"odometry.prior_gate_agree_gyro_rad", &odometry.prior_gate_agree_gyro_rad},
-      {"odometry.prior_gate_compass_window_s", &odometry.prior_gate_compass_window_s},
       {"min_score", &o.min_score},
       {"reacquire_min_score", &o.reacquire_min_score},
       {"window_growth", &o.window_growth},
@@ -79,10 +80,12 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::MapLo
       {"matcher.threshold_m", &o.matcher.threshold_m}};
   const std::map<std::string, int*> ints = {{"min_hits", &o.min_hits},
                                             {"outside_after_failures", &o.outside_after_failures},
-                                            {"oversample", &o.oversample},
-                                            {"odometry.prior_gate_confirm_gyro",
-                                             &odometry.prior_gate_confirm_gyro}};
+                                            {"oversample", &o.oversample}};
   for (const std::string& setting : settings) {
+    if (setting.starts_with(kOdometry)) {
+      odometry_settings.push_back(setting.substr(kOdometry.size()));
+      continue;
+    }
     const auto [name, value] = ParseSetting(setting);
     if (name == "window.size_xy_m") {
       o.window.size_x_m = o.window.size_y_m = value;
@@ -96,6 +99,7 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::MapLo
       throw std::runtime_error("--set: unknown option '" + name + "' (see docs/localisation.md)");
     }
   }
+  ApplyOdometrySettings(odometry_settings, odometry);
 }
 
 // The plan in the mission frame: read (CSV, SVG or DXF), scaled to metres, then moved by

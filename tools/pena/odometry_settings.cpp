@@ -1,0 +1,65 @@
+#include "odometry_settings.hpp"
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "cli_support.hpp"
+
+namespace pena::cli {
+namespace {
+
+// The numeric options --set may change (names as in LaserOdometryOptions).
+std::map<std::string, double*> SettableOptions(odometry::LaserOdometryOptions& o) {
+  return {{"min_score", &o.min_score},
+          {"keyframe_distance_m", &o.keyframe_distance_m},
+          {"keyframe_angle_rad", &o.keyframe_angle_rad},
+          {"keyframe_min_score", &o.keyframe_min_score},
+          {"degenerate_eigen_ratio", &o.degenerate_eigen_ratio},
+          {"reference_fill_spacing_m", &o.reference_fill_spacing_m},
+          {"reference_fill_max_gap_m", &o.reference_fill_max_gap_m},
+          {"reference_fill_max_gap_beams", &o.reference_fill_max_gap_beams},
+          {"reference_fill_max_gap_beams_bursty", &o.reference_fill_max_gap_beams_bursty},
+          {"reference_fill_band_spacing_m", &o.reference_fill_band_spacing_m},
+          {"timing_burst_gap_s", &o.timing_burst_gap_s},
+          {"timing_burst_fraction", &o.timing_burst_fraction},
+          {"prior_gate_rad", &o.prior_gate_rad},
+          {"prior_gate_fraction", &o.prior_gate_fraction},
+          {"prior_gate_fraction_gyro", &o.prior_gate_fraction_gyro},
+          {"prior_gate_m", &o.prior_gate_m},
+          {"prior_gate_agree_gyro_m", &o.prior_gate_agree_gyro_m},
+          {"prior_gate_agree_gyro_rad", &o.prior_gate_agree_gyro_rad},
+          {"prior_gate_compass_window_s", &o.prior_gate_compass_window_s},
+          {"stale_repeat_m", &o.stale_repeat_m},
+          {"tilt_max_pitch_rad", &o.tilt_max_pitch_rad},
+          {"tilt_laser_height_m", &o.tilt_laser_height_m},
+          {"tilt_ceiling_height_m", &o.tilt_ceiling_height_m},
+          {"stale_changed_m", &o.stale_changed_m},
+          {"matcher.threshold_m", &o.matcher.threshold_m}};
+}
+
+}  // namespace
+
+void ApplyOdometrySettings(const std::vector<std::string>& settings,
+                           odometry::LaserOdometryOptions& o) {
+  std::map<std::string, double*> doubles = SettableOptions(o);
+  const std::map<std::string, int*> ints = {{"local_map_keyframes", &o.local_map_keyframes},
+                                            {"min_match_points", &o.min_match_points},
+                                            {"prior_gate_confirm", &o.prior_gate_confirm},
+                                            {"prior_gate_confirm_gyro", &o.prior_gate_confirm_gyro},
+                                            {"stale_history_scans", &o.stale_history_scans},
+                                            {"timing_burst_window_scans",
+                                             &o.timing_burst_window_scans}};
+  for (const std::string& setting : settings) {
+    const auto [name, value] = ParseSetting(setting);
+    if (const auto d = doubles.find(name); d != doubles.end()) {
+      *d->second = value;
+    } else if (const auto i = ints.find(name); i != ints.end()) {
+      *i->second = static_cast<int>(std::lround(value));
+    } else {
+      throw std::runtime_error("--set: unknown option '" + name + "' (see docs/odometry.md)");
+    }
+  }
+}
+
+}  // namespace pena::cli
