@@ -125,13 +125,13 @@ std::optional<sensors::SensorRecord> LiveSensorSource::Next() {
       return std::nullopt;
     }
     if (std::optional<Item> item = queue_.PopFor(kPoll)) {
-      if (Take(std::move(*item))) last_sample_ns_ = NowNs();
+      Take(std::move(*item));
       // Take what is queued before looking at the window again, but a bounded batch: under a
       // flood the loop must still reach the signal and end checks.
       for (int taken = 1; taken < kMaxBatch; ++taken) {
         std::optional<Item> more = queue_.TryPop();
         if (!more) break;
-        if (Take(std::move(*more))) last_sample_ns_ = NowNs();
+        Take(std::move(*more));
       }
     } else if (wait_hook_) {
       wait_hook_();
@@ -140,21 +140,16 @@ std::optional<sensors::SensorRecord> LiveSensorSource::Next() {
   }
 }
 
-bool LiveSensorSource::Take(Item item) {
-  return std::visit(
+void LiveSensorSource::Take(Item item) {
+  last_sample_ns_ = NowNs();  // only this entity's samples are queued (Enqueue)
+  std::visit(
       [this](auto& sample) {
         using Sample = std::decay_t<decltype(sample)>;
-        // The topics are keyed by entity; every entity's samples reach every reader.
-        if (sample.entity_id().to_string() != options_.entity_id) {
-          ++counts_.other_entity;
-          return false;
-        }
         if constexpr (std::is_same_v<Sample, pena_dds::SensorStreamStatus>) {
           TakeStatus(sample);
         } else {
           TakeSample(sample, TopicOf<Sample>());
         }
-        return true;
       },
       item);
 }
@@ -285,7 +280,7 @@ void LiveSensorSource::LogSummary() const {
   spdlog::info("{}: live input ended ({}): {} records to the chain{}; {} NaN or negative ranges made "
                "no-returns; {} samples of other entities ignored",
                options_.entity_id, end_reason_, counts_.released + merger_.held(), topics,
-               counts_.bad_ranges, counts_.other_entity + other_entity_.load());
+               counts_.bad_ranges, other_entity_.load());
 }
 
 }  // namespace pena::services

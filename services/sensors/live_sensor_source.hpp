@@ -44,7 +44,6 @@ struct LiveInputCounts {
   std::array<std::size_t, kSensorTopicCount> refused{};   // failed validation
   std::array<std::size_t, kSensorTopicCount> late{};      // older than what was released
   std::size_t released = 0;
-  std::size_t other_entity = 0;  // samples of other entities, ignored
   std::size_t bad_ranges = 0;    // NaN or negative ranges made no-returns
 };
 
@@ -74,8 +73,8 @@ class LiveSensorSource : public io::LogSource {
   // Listener threads: queues a sample of this entity, counts and drops the others'.
   template <class Sample>
   void Enqueue(Sample&& sample);
-  // Takes one queued sample; true if it was for this entity.
-  bool Take(Item item);
+  // Takes one queued sample (this entity's: Enqueue dropped the others).
+  void Take(Item item);
   template <class Sample>
   void TakeSample(const Sample& sample, SensorTopic topic);
   void TakeStatus(const pena_dds::SensorStreamStatus& status);
@@ -97,7 +96,7 @@ class LiveSensorSource : public io::LogSource {
   bool ended_ = false;
   std::string end_reason_;
 
-  std::atomic<std::size_t> other_entity_{0};  // dropped by the listeners
+  std::atomic<std::size_t> other_entity_{0};  // other entities' samples, dropped by Enqueue
   WorkQueue<Item> queue_;
   Reader<pena_dds::LaserScanSamplePubSubType> scan_reader_;
   Reader<pena_dds::GyroSamplePubSubType> gyro_reader_;
