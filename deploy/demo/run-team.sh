@@ -11,7 +11,8 @@
 # PENA_FUSION_ARGS (extra pena-fusion options, e.g. --no-corrections or --raw-corrections to
 # compare with the filtered corrections), PENA_DEMO_LOCKSTEP (1: fusion and entities in lockstep,
 # so the corrections and the map do not depend on the machine's load; 0: free-running, as a real
-# deployment; off by itself with --no-corrections, where there is no answer to wait for).
+# deployment; off by itself with --no-corrections, where there is no answer to wait for),
+# PENA_DEMO_CORRECTION_INTERVAL (2.4: mission seconds between correction attempts per entity).
 # Every process started here is stopped on exit (normal, error, Ctrl-C); nothing is left running.
 set -euo pipefail
 
@@ -22,6 +23,7 @@ RATE=${PENA_DEMO_RATE:-5}
 LOCKSTEP=${PENA_DEMO_LOCKSTEP:-1}
 [[ " ${PENA_FUSION_ARGS:-} " == *" --no-corrections "* ]] && LOCKSTEP=0
 SEED=${PENA_DEMO_SEED:-1}
+INTERVAL=${PENA_DEMO_CORRECTION_INTERVAL:-2.4}
 PENA=$BUILD/tools/pena/pena
 FUSION_BIN=$BUILD/services/fusion/pena-fusion
 ENTITY_BIN=$BUILD/services/entity/pena-entity
@@ -77,9 +79,9 @@ state_dir: "fusion/state"
 plan: "$MISSION/apriori.csv"
 output_dir: "fusion"
 $(if ((LOCKSTEP)); then
-  echo "# Lockstep: attempt a correction at most every 1.2 s of mission time per entity; every"
-  echo "# entity waits for the answer (--await-corrections 1.2), so a busy machine cannot drop one."
-  echo "correction_interval_s: 1.2"
+  echo "# Lockstep: attempt a correction at most every $INTERVAL s of mission time per entity; every"
+  echo "# entity waits for the answer (--await-corrections $INTERVAL), so a busy machine cannot drop one."
+  echo "correction_interval_s: $INTERVAL"
 else
   echo "# Attempt a correction at most every 0.2 wall s per entity (1 s of mission time at rate 5)."
   echo "correction_interval_s: 0.2"
@@ -94,8 +96,11 @@ CONF
 FUSION_ARGS=()
 ENTITY_ARGS=()
 if ((LOCKSTEP)); then
-  FUSION_ARGS=(--lockstep)
-  ENTITY_ARGS=(--await-corrections 1.2)
+  # The team's ids: the fusion orders their samples by mission time once all four are heard.
+  TEAM=$(for dir in "$MISSION"/*/; do [[ -f $dir/sensors.penalog ]] && basename "$dir"; done |
+    paste -sd, -)
+  FUSION_ARGS=(--lockstep --lockstep-entities "$TEAM")
+  ENTITY_ARGS=(--await-corrections "$INTERVAL")
 fi
 echo "== pena-fusion (DDS domain $DOMAIN, loopback only$( ((LOCKSTEP)) && echo ", lockstep"))"
 # shellcheck disable=SC2086  # PENA_FUSION_ARGS is a list of options

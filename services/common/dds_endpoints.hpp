@@ -11,9 +11,11 @@
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "dds_participant.hpp"
 #include "topics.hpp"
@@ -71,6 +73,18 @@ class Writer {
     eprosima::fastdds::dds::PublicationMatchedStatus status;
     writer_->get_publication_matched_status(status);
     return status.current_count;
+  }
+  // A reader of the participant whose writer `publication` is (same GUID prefix) is matched.
+  // Discovery is asymmetric: a reader can see this writer before this writer sees it, and what
+  // is written meanwhile never reaches it (volatile durability).
+  bool MatchesParticipantOf(const Handle& publication) const {
+    std::vector<eprosima::fastrtps::rtps::InstanceHandle_t> subscriptions;
+    if (writer_->get_matched_subscriptions(subscriptions) != ReturnCode_t::RETCODE_OK) return true;
+    for (const auto& subscription : subscriptions) {
+      const Handle bytes = ToHandle(subscription);
+      if (std::equal(publication.begin(), publication.begin() + 12, bytes.begin())) return true;
+    }
+    return false;
   }
   // Waits until every matched reliable reader acknowledged everything; false on timeout.
   bool WaitForAcknowledgments(double timeout_s) {

@@ -22,7 +22,7 @@ namespace {
 constexpr std::int64_t kPollNs = 50'000'000;
 // --await-corrections: an answer not received within this (wall) is given up (fusion restarted,
 // sample lost); the entity goes on and waits again at the next attempted scan.
-constexpr std::int64_t kAwaitTimeoutNs = 5'000'000'000;
+constexpr std::int64_t kAwaitTimeoutNs = 15'000'000'000;
 
 std::int64_t SecondsToNs(double seconds) { return static_cast<std::int64_t>(seconds * 1e9); }
 
@@ -217,26 +217,29 @@ void EntityService::Feed(const sensors::SensorRecord& record) {
   if (options_.start_unknown) ToPlacedFrame(*step);
   last_stamp_s_ = step->odometry.stamp_s;
   trajectory_.push_back({last_stamp_s_, step->world_from_body});
-  const std::uint64_t map_version =
-      pipeline_->local_map().version();
-  pena_dds::EntityPose pose =
-      ToDdsPose(*step, entity_id_, ++pose_seq_, map_version, correction_seq_);
-  Send(pose_writer_, pose);
-  ++summary_.poses_sent;
+  // The scan's map change, then its reference scan, then its pose: each carries what came
+  // before it on the other topics (versions, reference scans sent), so a lockstep fusion
+  // (services/fusion/lockstep_order.hpp) can put the topics back in this order.
+  if (step->map_delta) PublishDelta(*step->map_delta, last_stamp_s_);
+  const std::uint64_t map_version = pipeline_->local_map().version();
   if (step->odometry.reference_changed) {
     pena_dds::ReferenceScan scan =
         ToDdsReferenceScan(std::get<sensors::LaserScan>(record), *step, entity_id_, ++scan_seq_,
                            map_version, options_.range_quantum_m);
     Send(scan_writer_, scan);
     ++summary_.reference_scans_sent;
-    // The same rule as the fusion's in lockstep: the scans it attempts are the ones waited for.
-    if (options_.await_corrections_s > 0.0 &&
-        step->odometry.stamp_s - last_awaited_stamp_s_ >= options_.await_corrections_s) {
-      last_awaited_stamp_s_ = step->odometry.stamp_s;
-      AwaitAnswer(scan_seq_);
-    }
   }
-  if (step->map_delta) PublishDelta(*step->map_delta, last_stamp_s_);
+  pena_dds::EntityPose pose =
+      ToDdsPose(*step, entity_id_, ++pose_seq_, map_version, correction_seq_);
+  pose.reference_scans_sent(scan_seq_);
+  Send(pose_writer_, pose);
+  ++summary_.poses_sent;
+  // The same rule as the fusion's in lockstep: the scans it attempts are the ones waited for.
+  if (step->odometry.reference_changed && options_.await_corrections_s > 0.0 &&
+      step->odometry.stamp_s - last_awaited_stamp_s_ >= options_.await_corrections_s) {
+    last_awaited_stamp_s_ = step->odometry.stamp_s;
+    AwaitAnswer(scan_seq_);
+  }
 }
 
 void EntityService::AwaitAnswer(std::uint64_t seq) {
@@ -267,6 +270,7 @@ void EntityService::SendFailed(const std::string& topic) {
 void EntityService::PublishDelta(const line_map::MapDelta& delta, double stamp_s) {
   try {
     pena_dds::LineMapDelta sample = ToDdsLineMapDelta(delta, entity_id_, stamp_s);
+    sample.reference_scans_sent(scan_seq_);
     Send(delta_writer_, sample);
     ++summary_.deltas_sent;
     if (recorder_) recorder_->Delta("sent_line_map_deltas", delta);
@@ -313,6 +317,7 @@ void EntityService::PublishStatus(pena_dds::EntityState state, const std::string
   status.corrections_applied(static_cast<std::uint64_t>(pipeline_->counts().corrections_applied));
   status.message(message.substr(0, 128));
   status.start_unknown(options_.start_unknown);
+  status.reference_scans_sent(scan_seq_);
   Send(status_writer_, status);
 }
 

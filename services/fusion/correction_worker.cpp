@@ -112,7 +112,8 @@ fusion::CorrectionFilter& CorrectionWorker::FilterOf(Entity& entity) const {
   return *entity.filter;
 }
 
-void CorrectionWorker::Offer(const pena_dds::ReferenceScan& scan, std::int64_t received_ns) {
+void CorrectionWorker::Offer(const pena_dds::ReferenceScan& scan, std::int64_t received_ns,
+                             std::shared_ptr<const CorrectionContext> context) {
   const std::string entity_id = scan.entity_id().to_string();
   const geometry::Pose2 odom_from_body = FromDds(scan.odom_from_body());
   {
@@ -140,7 +141,7 @@ void CorrectionWorker::Offer(const pena_dds::ReferenceScan& scan, std::int64_t r
       order_.erase(std::find(order_.begin(), order_.end(), entity_id));
     }
     order_.push_back(entity_id);  // the newest request is served first
-    entity.pending = Request{scan, received_ns};
+    entity.pending = Request{scan, received_ns, std::move(context)};
   }
   ready_.notify_one();
 }
@@ -167,24 +168,25 @@ std::optional<CorrectionWorker::Job> CorrectionWorker::Next() {
       stats_.Add("corrections_stale");
       continue;
     }
-    const bool known = context_ != nullptr && context_->map_from_entity.count(entity_id) > 0;
+    std::shared_ptr<const CorrectionContext> context = request.context ? request.context : context_;
+    const bool known = context != nullptr && context->map_from_entity.count(entity_id) > 0;
     if (!known) {
       // Not placed (yet): nothing to match against; in lockstep the entity waits for an answer.
       if (options_.lockstep) {
-        const std::uint64_t version = context_ ? context_->global_version : 0;
+        const std::uint64_t version = context ? context->global_version : 0;
         lock.unlock();
         AnswerNothing(entity_id, request.scan, version);
         lock.lock();
       }
       continue;
     }
-    const auto placed = context_->map_from_entity.find(entity_id);
+    const auto placed = context->map_from_entity.find(entity_id);
     wait_ms_.push_back(waited_ms);
     entity.last_attempt_ns = now_ns;
     entity.in_flight = true;
     Job job;
     job.entity_id = entity_id;
-    job.context = context_;
+    job.context = context;
     job.start_unknown = entity.start_unknown;
     job.map_from_entity = entity.map_from_entity_sent.value_or(placed->second);
     // The pose the entity will hold once it applied what was sent (a scan taken before the last

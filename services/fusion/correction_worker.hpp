@@ -78,7 +78,9 @@ class CorrectionWorker {
   void SetEntity(const std::string& entity_id, bool robot, bool start_unknown);
   // Any thread (the DDS listener). Grows the entity's uncertainty by its odometry and, at most
   // once per correction_interval_s, queues the scan for matching (replacing a waiting one).
-  void Offer(const pena_dds::ReferenceScan& scan, std::int64_t received_ns);
+  // With `context` (lockstep) the scan is matched against that state rather than the latest.
+  void Offer(const pena_dds::ReferenceScan& scan, std::int64_t received_ns,
+             std::shared_ptr<const CorrectionContext> context = nullptr);
   // Any thread. The entity's frame was set by someone else (an operator): forget what we sent.
   void Forget(const std::string& entity_id);
   // Stops and joins the thread; requests still waiting are dropped (counted).
@@ -88,6 +90,7 @@ class CorrectionWorker {
   struct Request {
     pena_dds::ReferenceScan scan;
     std::int64_t received_ns = 0;
+    std::shared_ptr<const CorrectionContext> context;  // null: the latest one
   };
   struct Entity {
     std::optional<fusion::CorrectionFilter> filter;

@@ -6,7 +6,9 @@
 // (fusion_service.hpp).
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "from_dds.hpp"
 #include "fusion_service.hpp"
@@ -14,7 +16,16 @@
 
 namespace pena::services {
 
-void FusionService::OnReferenceScan(const pena_dds::ReferenceScan& sample) {
+void FusionService::OnReferenceScan(pena_dds::ReferenceScan&& sample, const SampleMeta& meta) {
+  // In lockstep the fusion worker offers it in mission-time order, with the map of that moment.
+  if (options_.lockstep && corrections_) {
+    inbox_.Push(Event{Sample(std::move(sample)), meta});
+    return;
+  }
+  Handle(sample, meta);
+}
+
+void FusionService::Handle(const pena_dds::ReferenceScan& sample, const SampleMeta& meta) {
   const std::string entity_id = sample.entity_id().to_string();
   pena_dds::ReferenceScanPubSubType type;
   stats_.Count("received", topics::kReferenceScan.name, entity_id,
@@ -22,11 +33,33 @@ void FusionService::OnReferenceScan(const pena_dds::ReferenceScan& sample) {
   if (!corrections_) return;
   try {
     CheckSchemaVersion(sample.schema_version(), "ReferenceScan");
-    corrections_->Offer(sample, NowNs());
+    if (lockstep_order_) {
+      AwaitCorrectionReader(entity_id, meta);
+      // The map as of this scan's turn: every delta before it applied, none after.
+      if (context_dirty_) RefreshCorrectionContext();
+      corrections_->Offer(sample, NowNs(), context_);
+    } else {
+      corrections_->Offer(sample, NowNs());
+    }
   } catch (const std::logic_error& error) {
     stats_.Add("samples_dropped");
     spdlog::warn("sample dropped: {}", error.what());
   }
+}
+
+void FusionService::AwaitCorrectionReader(const std::string& entity_id, const SampleMeta& meta) {
+  // In lockstep the entity waits for the answer; it is lost if written before our correction
+  // writer matched the entity's reader (the entity's side may match first). Once per entity.
+  if (correction_reader_seen_.count(entity_id) > 0) return;
+  const std::int64_t until_ns = NowNs() + 2'000'000'000;
+  while (!correction_writer_.MatchesParticipantOf(meta.publication) && NowNs() < until_ns) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  if (!correction_writer_.MatchesParticipantOf(meta.publication)) {
+    spdlog::warn("{}: its correction reader did not match within 2 s; answering anyway",
+                 entity_id);
+  }
+  correction_reader_seen_.insert(entity_id);
 }
 
 CorrectionSinks FusionService::Sinks() {
@@ -57,6 +90,7 @@ void FusionService::RefreshCorrectionContext() {
       context->map_from_entity[entity_id] = *status->map_from_entity;
     }
   }
+  context_ = context;
   corrections_->SetContext(std::move(context));
 }
 

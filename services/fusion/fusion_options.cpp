@@ -72,6 +72,7 @@ void ValidateFusionServiceOptions(const FusionServiceOptions& options) {
           "dds.domain_id must be in 0..232, got " + std::to_string(options.dds.domain_id));
   Require(options.plan.empty() || std::filesystem::exists(options.plan),
           "plan: no such file " + options.plan.string());
+  ValidateLockstepOrderOptions(options.lockstep_order);
   fusion::ValidateFusionOptions(options.store.fusion);
   fusion::ValidateCorrectionFilterOptions(options.human_filter);
   fusion::ValidateCorrectionFilterOptions(options.robot_filter);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "dds_participant.hpp"
+#include "lockstep_order.hpp"
 #include "pena/fusion/correction.hpp"
 #include "pena/fusion/correction_filter.hpp"
 #include "pena/fusion/fusion_store.hpp"
@@ -50,6 +51,9 @@ struct FusionServiceOptions {
   // apply), so the entity that waits for the answer sees the same corrections however loaded
   // the machine is. Command line only (--lockstep).
   bool lockstep = false;
+  // Lockstep: the order deltas are applied and scans attempted in (lockstep_order.hpp), so the
+  // global map is the same on every run too. Command line only.
+  LockstepOrderOptions lockstep_order;
   // A reference scan that waited longer than this for the correction worker is dropped (the
   // entity's next one gets the next chance): the 200 ms latency budget minus a match.
   // Wall seconds; 0 = never dropped.

@@ -60,12 +60,13 @@ FusionService::FusionService(FusionServiceOptions options)
       snapshot_reader_(participant_, topics::kLineMapSnapshot,
                        Enqueue<pena_dds::LineMapSnapshotPubSubType>("line_map_snapshot")),
       scan_reader_(participant_, topics::kReferenceScan,
-                   [this](pena_dds::ReferenceScan&& sample, const SampleMeta&) {
-                     OnReferenceScan(sample);
+                   [this](pena_dds::ReferenceScan&& sample, const SampleMeta& meta) {
+                     OnReferenceScan(std::move(sample), meta);
                    }),
       sync_reader_(participant_, topics::kSyncRequest,
                    Enqueue<pena_dds::SyncRequestPubSubType>("sync_request")) {
   CreateOperatorEndpoints();
+  if (options_.lockstep) lockstep_order_.emplace(options_.lockstep_order);
   const fusion::FusionRecovery& recovery = store_->recovery();
   spdlog::info("state {}: {}; {} journal records replayed; global map version {} ({} segments), "
                "{} entities known{}",
@@ -126,7 +127,11 @@ void FusionService::Startup() {
 FusionRunSummary FusionService::Run() {
   Startup();
   while (!StopRequested()) {
-    if (std::optional<Event> event = inbox_.PopFor(kPoll)) Dispatch(*event);
+    if (std::optional<Event> event = inbox_.PopFor(kPoll)) {
+      LockstepProgress(*event);
+      if (!HoldInOrder(*event)) Dispatch(*event);
+    }
+    ReleaseInOrder();
     Periodic();
   }
   if (corrections_) corrections_->Stop();
@@ -174,6 +179,11 @@ fusion::FusionOutput FusionService::Apply(const fusion::FusionInput& input) {
     } else {
       spdlog::info("{}: {} -> {}", change.entity_id, fusion::ToString(change.from),
                    fusion::ToString(change.to));
+    }
+    // A lost or departed entity is not waited for in lockstep.
+    if (lockstep_order_ && (change.to == fusion::EntityLifecycle::kLost ||
+                            change.to == fusion::EntityLifecycle::kLeft)) {
+      lockstep_order_->Drop(change.entity_id);
     }
   }
   // The correction worker needs the new walls or alignments.

@@ -14,6 +14,7 @@
 #include <mutex>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <variant>
 
@@ -22,6 +23,7 @@
 #include "correction_worker.hpp"
 #include "fusion_options.hpp"
 #include "fusion_stats.hpp"
+#include "lockstep_order.hpp"
 #include "pena/fusion/correction_filter.hpp"
 #include "pena/fusion/fusion_store.hpp"
 #include "pena/pipeline/entity_pipeline.hpp"
@@ -71,7 +73,8 @@ class FusionService {
   using Sample = std::variant<pena_dds::EntityPose, pena_dds::EntityStatus,
                               pena_dds::LineMapDelta, pena_dds::LineMapSnapshot,
                               pena_dds::OperatorCorrection, pena_dds::Annotation,
-                              pena_dds::SyncRequest, LivelinessChange, Realign>;
+                              pena_dds::SyncRequest, pena_dds::ReferenceScan, LivelinessChange,
+                              Realign>;
   struct Event {
     Sample sample;
     SampleMeta meta;
@@ -89,10 +92,21 @@ class FusionService {
   void Handle(const pena_dds::OperatorCorrection& sample, const SampleMeta& meta);
   void Handle(const pena_dds::Annotation& sample, const SampleMeta& meta);
   void Handle(const pena_dds::SyncRequest& sample, const SampleMeta& meta);
+  void Handle(const pena_dds::ReferenceScan& sample, const SampleMeta& meta);
   void Handle(const LivelinessChange& change, const SampleMeta& meta);
   void Handle(const Realign& request, const SampleMeta& meta);
-  // The reference-scan listener: counts the sample and offers it to the correction worker.
-  void OnReferenceScan(const pena_dds::ReferenceScan& sample);
+  // The reference-scan listener: counts the sample and offers it to the correction worker (in
+  // lockstep: queues it for the fusion worker, which offers it in mission-time order).
+  void OnReferenceScan(pena_dds::ReferenceScan&& sample, const SampleMeta& meta);
+  // Lockstep (fusion_lockstep.cpp): deltas and scans are held by lockstep_order_ and handled in
+  // its order; poses and statuses tell it how far each entity got. True: the event was held.
+  bool HoldInOrder(Event& event);
+  void LockstepProgress(const Event& event);
+  void ReleaseInOrder();
+  void LockstepJoin(const std::string& entity_id);
+  // Lockstep: before the first answer to an entity, waits (at most 2 s) until the correction
+  // writer matched a reader of the participant that sent `meta`'s sample.
+  void AwaitCorrectionReader(const std::string& entity_id, const SampleMeta& meta);
   // The correction worker's sinks (called on its thread).
   CorrectionSinks Sinks();
   // After a change of the global map or of an alignment: a new context for the correction
@@ -133,6 +147,12 @@ class FusionService {
   std::map<std::string, bool> start_unknown_;    // from the entities' status
   std::map<std::string, bool> placement_sent_;   // this run told the entity its frame
   bool context_dirty_ = true;
+  std::shared_ptr<const CorrectionContext> context_;  // the last one handed to the worker
+  std::optional<LockstepOrder> lockstep_order_;
+  std::map<std::uint64_t, Event> held_;  // lockstep: token -> event
+  std::uint64_t next_token_ = 1;
+  std::int64_t lockstep_logged_ns_ = 0;  // last "lockstep: waiting" log line
+  std::set<std::string> correction_reader_seen_;  // lockstep: entities whose reader matched
   std::int64_t context_refreshed_ns_ = 0;
   std::map<std::string, std::int64_t> annotation_ids_;  // DDS annotation_id -> fusion id
   bool snapshot_dirty_ = true;

@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <iostream>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "config_loader.hpp"
 #include "fusion_options.hpp"
@@ -29,6 +31,8 @@ struct Overrides {
   std::optional<double> correction_interval_s;
   std::optional<double> correction_max_wait_s;
   bool lockstep = false;
+  std::vector<std::string> lockstep_entities;
+  std::optional<double> lockstep_stall_s;
 };
 
 void AddOptions(CLI::App& app, Overrides& o) {
@@ -46,6 +50,13 @@ void AddOptions(CLI::App& app, Overrides& o) {
   app.add_flag("--lockstep", o.lockstep,
                "Schedule correction attempts on mission time and answer every one (for entities "
                "run with --await-corrections: results independent of the machine's load)");
+  app.add_option("--lockstep-entities", o.lockstep_entities,
+                 "With --lockstep: entity ids to wait for before the first item is released "
+                 "(comma separated; the team the demo starts)")
+      ->delimiter(',');
+  app.add_option("--lockstep-stall", o.lockstep_stall_s,
+                 "With --lockstep: wall seconds an item waits for a silent entity before it is "
+                 "released anyway (default 10)");
   app.add_option("--domain", o.domain_id, "DDS domain id (0..232)");
   app.add_option("--profile", o.participant_profile, "Participant profile (default pena_loopback)");
   app.add_option("--profiles-file", o.profiles_files, "DDS XML profile file (repeatable)");
@@ -66,6 +77,8 @@ FusionServiceOptions BuildOptions(const Overrides& o) {
   if (o.correction_interval_s) options.correction_interval_s = *o.correction_interval_s;
   if (o.correction_max_wait_s) options.correction_max_wait_s = *o.correction_max_wait_s;
   if (o.lockstep) options.lockstep = true;
+  options.lockstep_order.expected_entities = o.lockstep_entities;
+  if (o.lockstep_stall_s) options.lockstep_order.stall_s = *o.lockstep_stall_s;
   if (o.domain_id) options.dds.domain_id = *o.domain_id;
   if (!o.participant_profile.empty()) options.dds.participant_profile = o.participant_profile;
   if (!o.profiles_files.empty()) {
