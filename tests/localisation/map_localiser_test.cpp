@@ -100,6 +100,60 @@ TEST_F(MapLocaliserTest, GoesOutsideTheMapAndIsReacquired) {
   ExpectNear(back->map_from_body_after, truth, 0.05, 0.5 * kDeg);
 }
 
+// The office corridor with the odometry 0.6 m ahead along it. Seen from the expected pose the
+// plan looks different through the doors, so the right correction scores low there; judged again
+// from where it puts the entity, it scores as a match should.
+TEST_F(MapLocaliserTest, ALargeCorrectionIsJudgedFromWhereItPutsTheEntity) {
+  MapLocaliserOptions options;
+  options.window.size_x_m = options.window.size_y_m = 1.6;
+  const geometry::Pose2 truth{20.46, 14.0, 0.0};
+  const auto [scan, estimate] = At(truth, {0.6, 0.0, 0.0});
+  MapLocaliser localiser(options, *office_.apriori, {});
+  const auto round = localiser.Update(scan, estimate);
+  ASSERT_TRUE(round.has_value());
+  EXPECT_TRUE(round->accepted);
+  EXPECT_TRUE(round->recast);
+  EXPECT_GT(round->score, round->first_score + 0.1);
+  ExpectNear(round->map_from_body_after, truth, 0.05, 0.5 * kDeg);
+  // Without the re-cast the same search is judged on the first score alone.
+  options.recast_min_m = 1e9;
+  options.recast_min_rad = 1e9;
+  MapLocaliser plain(options, *office_.apriori, {});
+  const auto first = plain.Update(scan, estimate);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_FALSE(first->recast);
+  EXPECT_NEAR(first->score, round->first_score, 1e-12);
+}
+
+// A keyframe the odometry placed along the corridor by its motion prior alone (degenerate) and
+// 0.5 m off: the places along the corridor are each judged from where they are and the one the
+// door frames pin down is taken. A matched keyframe keeps the odometry along it as before.
+TEST_F(MapLocaliserTest, AnOdometryKeyframeOnItsPriorIsSearchedAlongTheCorridor) {
+  const geometry::Pose2 truth{21.07, 14.0, 0.0};
+  auto [scan, estimate] = At(truth, {0.5, 0.0, 0.0});
+  MapLocaliser matched({}, *office_.apriori, {});
+  const auto kept = matched.Update(scan, estimate);
+  ASSERT_TRUE(kept.has_value());
+  EXPECT_TRUE(kept->accepted);
+  EXPECT_TRUE(kept->degenerate);
+  EXPECT_FALSE(kept->recast);
+  EXPECT_NEAR(kept->map_from_body_after.x_m - truth.x_m, 0.5, 0.05);
+  estimate.status = odometry::MatchStatus::kDegenerate;
+  MapLocaliser doubted({}, *office_.apriori, {});
+  const auto round = doubted.Update(scan, estimate);
+  ASSERT_TRUE(round.has_value());
+  EXPECT_TRUE(round->accepted);
+  EXPECT_FALSE(round->degenerate);
+  EXPECT_TRUE(round->recast);
+  EXPECT_GT(round->score, round->first_score + MapLocaliserOptions{}.along_min_drop);
+  ExpectNear(round->map_from_body_after, truth, 0.05, 0.5 * kDeg);
+  // Without the search along the corridor the odometry is kept as for a matched keyframe.
+  MapLocaliserOptions off;
+  off.along_search_m = 0.0;
+  MapLocaliser plain(off, *office_.apriori, {});
+  EXPECT_NEAR(plain.Update(scan, estimate)->map_from_body_after.x_m - truth.x_m, 0.5, 0.05);
+}
+
 TEST(MapLocaliserOptions, RejectsBadValues) {
   MapLocaliserOptions options;
   options.min_score = 0.0;
@@ -135,7 +189,8 @@ std::vector<geometry::Segment2> Corridor(bool doors) {
 }
 
 // The along-corridor error of the odometry after one round, scan taken looking down the corridor.
-std::pair<MapCorrection, double> AlongError(bool doors, const MapLocaliserOptions& options = {}) {
+std::pair<MapCorrection, double> AlongError(bool doors, const MapLocaliserOptions& options = {},
+                                            odometry::MatchStatus odometry_status = odometry::MatchStatus::kMatched) {
   const std::vector<geometry::Segment2> walls = Corridor(doors);
   const VirtualScanner scanner(walls);
   MapLocaliser localiser(options, walls, {});
@@ -144,6 +199,7 @@ std::pair<MapCorrection, double> AlongError(bool doors, const MapLocaliserOption
   estimate.stamp_s = 1.0;
   estimate.world_from_body = {truth.x_m + 0.2, truth.y_m, 0.0};  // 0.2 m ahead along the corridor
   estimate.reference_changed = true;
+  estimate.status = odometry_status;
   const auto round = localiser.Update(scanner.Scan(truth, testing::OfficeLaser(), 361, 1.0), estimate);
   const geometry::Pose2 corrected = localiser.MapFromBody(estimate.world_from_body);
   return {round.value_or(MapCorrection{}), corrected.x_m - truth.x_m};
@@ -154,6 +210,16 @@ TEST(MapLocaliserAlongDrop, AFeaturelessCorridorKeepsTheOdometryAlongIt) {
   EXPECT_TRUE(round.accepted);
   EXPECT_LT(round.along_drop, MapLocaliserOptions{}.along_min_drop);
   EXPECT_TRUE(round.degenerate);
+  EXPECT_NEAR(along_error_m, 0.2, 0.03);
+}
+
+// Where nothing pins the pose down along the corridor, searching along it (the odometry's keyframe
+// on its motion prior) finds no place better than another: the odometry is kept.
+TEST(MapLocaliserAlongDrop, AFeaturelessCorridorKeepsTheOdometryEvenOnItsPrior) {
+  const auto [round, along_error_m] = AlongError(false, {}, odometry::MatchStatus::kDegenerate);
+  EXPECT_TRUE(round.accepted);
+  EXPECT_TRUE(round.degenerate);
+  EXPECT_FALSE(round.recast);
   EXPECT_NEAR(along_error_m, 0.2, 0.03);
 }
 

@@ -77,6 +77,10 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::MapLo
       {"degenerate_eigen_ratio", &o.degenerate_eigen_ratio},
       {"along_probe_m", &o.along_probe_m},
       {"along_min_drop", &o.along_min_drop},
+      {"recast_min_m", &o.recast_min_m},
+      {"recast_min_rad", &o.recast_min_rad},
+      {"along_search_m", &o.along_search_m},
+      {"along_search_step_m", &o.along_search_step_m},
       {"matcher.threshold_m", &o.matcher.threshold_m}};
   const std::map<std::string, int*> ints = {{"min_hits", &o.min_hits},
                                             {"outside_after_failures", &o.outside_after_failures},
@@ -179,7 +183,7 @@ void WriteStatusCsv(const std::filesystem::path& path, const Run& run) {
   std::ofstream out(path);
   out << "stamp,status,accepted,confidence,score,hits,points,virtual_points,constraint_ratio,"
          "degenerate,along_drop,window_xy_m,window_theta_deg,correction_x,correction_y,correction_theta_deg,"
-         "x,y,theta\n";
+         "x,y,theta,recast,first_score\n";
   for (const localisation::MapCorrection& r : run.rounds) {
     const geometry::Pose2& c = r.correction;
     const geometry::Pose2& p = r.map_from_body_after;
@@ -188,7 +192,8 @@ void WriteStatusCsv(const std::filesystem::path& path, const Run& run) {
         << ',' << r.virtual_points << ',' << Fixed(r.constraint_ratio, 4) << ',' << (r.degenerate ? 1 : 0)
         << ',' << Fixed(r.along_drop, 3) << ',' << Fixed(r.window_xy_m, 3) << ',' << Fixed(r.window_theta_rad / kDeg, 2) << ','
         << Fixed(c.x_m, 4) << ',' << Fixed(c.y_m, 4) << ',' << Fixed(c.theta_rad / kDeg, 3) << ','
-        << Fixed(p.x_m, 4) << ',' << Fixed(p.y_m, 4) << ',' << Fixed(p.theta_rad, 5) << '\n';
+        << Fixed(p.x_m, 4) << ',' << Fixed(p.y_m, 4) << ',' << Fixed(p.theta_rad, 5) << ','
+        << (r.recast ? 1 : 0) << ',' << Fixed(r.first_score, 3) << '\n';
   }
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
 }

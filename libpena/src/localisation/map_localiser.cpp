@@ -33,6 +33,10 @@ void Validate(const MapLocaliserOptions& o) {
   Require(o.max_range_m > o.min_range_m, "max_range_m", "> min_range_m (m)", o.max_range_m);
   Require(o.along_probe_m > 0.0, "along_probe_m", "> 0 m", o.along_probe_m);
   Require(o.along_min_drop > 0.0, "along_min_drop", "> 0", o.along_min_drop);
+  Require(o.recast_min_m > 0.0, "recast_min_m", "> 0 m", o.recast_min_m);
+  Require(o.recast_min_rad > 0.0, "recast_min_rad", "> 0 rad", o.recast_min_rad);
+  Require(o.along_search_m >= 0.0, "along_search_m", ">= 0 m", o.along_search_m);
+  Require(o.along_search_step_m > 0.0, "along_search_step_m", "> 0 m", o.along_search_step_m);
 }
 
 // The window grown by `factor`, capped at `max` per extent.
@@ -63,6 +67,24 @@ double AlongDrop(const scan_matching::CorrelationScanMatcher& matcher, const sca
     side = std::max(side, matcher.Score(real, moved));
   }
   return peak - side;
+}
+
+// What one search found: the correction (weak direction dropped where the scan does not
+// constrain it), the weak translation direction of the refinement (body frame), and whether the
+// search's best grid pose lies inside its window, not on its edge (only such an optimum is
+// re-judged: one on the edge was not searched around, and re-casting there chained corrections
+// beyond the window along office seed 3's corridor).
+struct Found {
+  geometry::Pose2 correction;
+  Eigen::Vector2d weak = Eigen::Vector2d::UnitX();
+  bool interior = false;
+};
+
+bool Interior(const scan_matching::MatchResult& match, const scan_matching::SearchWindow& w) {
+  const geometry::Pose2& g = match.grid_pose;
+  return match.converged && std::abs(g.x_m) < 0.5 * (w.size_x_m - w.step_xy_m) &&
+         std::abs(g.y_m) < 0.5 * (w.size_y_m - w.step_xy_m) &&
+         std::abs(g.theta_rad) < 0.5 * (w.size_theta_rad - w.step_theta_rad);
 }
 
 }  // namespace
@@ -104,17 +126,36 @@ struct MapLocaliser::Impl {
     last_odom = odom_from_body;
   }
 
-  MapCorrection Round(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body);
-  void Judge(const scan_matching::MatchResult& match, const scan_matching::CorrelationScanMatcher& matcher,
-             const scan_matching::Points2& real, MapCorrection& round) const;
+  // `on_prior`: the odometry took this pose, or a direction of it, from its motion prior.
+  MapCorrection Round(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body, bool on_prior);
+  // One search against the plan seen from `map_from_body` in `searched`; fills the round's
+  // figures and acceptance, returns the correction it found (weak direction dropped where the
+  // scan does not constrain it), also when rejected. nullopt: the plan is not in sight.
+  std::optional<Found> Search(const sensors::LaserScan& scan, const scan_matching::Points2& real,
+                              const geometry::Pose2& map_from_body,
+                              const scan_matching::SearchWindow& searched, MapCorrection& round) const;
+  // The round judged again from where `correction` puts the entity (see recast_min_m).
+  MapCorrection Recast(const sensors::LaserScan& scan, const scan_matching::Points2& real,
+                       const MapCorrection& round, const geometry::Pose2& correction) const;
+  // A degenerate round: the places along the weak direction, each judged from where it is.
+  std::optional<MapCorrection> AlongSearch(const sensors::LaserScan& scan, const scan_matching::Points2& real,
+                                           const MapCorrection& round, const Found& found) const;
+  Found Judge(const scan_matching::MatchResult& match, const scan_matching::CorrelationScanMatcher& matcher,
+              const scan_matching::Points2& real, const scan_matching::SearchWindow& searched,
+              MapCorrection& round) const;
+  bool NeedsRecast(const geometry::Pose2& correction) const {
+    return std::hypot(correction.x_m, correction.y_m) >= options.recast_min_m ||
+           std::abs(correction.theta_rad) >= options.recast_min_rad;
+  }
   void Conclude(const geometry::Pose2& odom_from_body, MapCorrection& round);
 };
 
 // Accepts or rejects a round on the paper's correlation threshold, and keeps the least-squares
 // refinement only along directions the scan constrains.
-void MapLocaliser::Impl::Judge(const scan_matching::MatchResult& match,
-                               const scan_matching::CorrelationScanMatcher& matcher,
-                               const scan_matching::Points2& real, MapCorrection& round) const {
+Found MapLocaliser::Impl::Judge(const scan_matching::MatchResult& match,
+                                const scan_matching::CorrelationScanMatcher& matcher,
+                                const scan_matching::Points2& real, const scan_matching::SearchWindow& searched,
+                                MapCorrection& round) const {
   round.score = match.score;
   round.hits = match.hits;
   geometry::Pose2 correction = match.reference_from_scan;
@@ -140,13 +181,14 @@ void MapLocaliser::Impl::Judge(const scan_matching::MatchResult& match,
   // little beyond it, but a correction more than twice the searched half-extent was not searched
   // for (intel: a -17 deg turn out of a +/-2 deg window lost the entity for good).
   const geometry::Pose2& found = match.reference_from_scan;
-  const bool in_window = std::abs(found.x_m) <= window.size_x_m &&
-                         std::abs(found.y_m) <= window.size_y_m &&
-                         std::abs(found.theta_rad) <= window.size_theta_rad;
+  const bool in_window = std::abs(found.x_m) <= searched.size_x_m &&
+                         std::abs(found.y_m) <= searched.size_y_m &&
+                         std::abs(found.theta_rad) <= searched.size_theta_rad;
   round.accepted =
       match.converged && in_window && match.hits >= options.min_hits && match.score >= min_score;
   round.confidence = match.score * std::min(1.0, match.hits / (2.0 * options.min_hits));
-  if (round.accepted) round.correction = correction;
+  round.correction = round.accepted ? correction : geometry::Pose2{};
+  return {correction, weak, in_window && Interior(match, searched)};
 }
 
 void MapLocaliser::Impl::Conclude(const geometry::Pose2& odom_from_body, MapCorrection& round) {
@@ -165,27 +207,77 @@ void MapLocaliser::Impl::Conclude(const geometry::Pose2& odom_from_body, MapCorr
   round.status = status;
 }
 
+std::optional<Found> MapLocaliser::Impl::Search(const sensors::LaserScan& scan, const scan_matching::Points2& real,
+                                                const geometry::Pose2& map_from_body,
+                                                const scan_matching::SearchWindow& searched,
+                                                MapCorrection& round) const {
+  const scan_matching::Points2 virtual_points = VirtualPoints(scan, map_from_body);
+  round.virtual_points = static_cast<int>(virtual_points.size());
+  round.accepted = false;
+  round.degenerate = false;
+  round.correction = {};
+  if (real.empty() || virtual_points.size() < static_cast<std::size_t>(options.min_hits)) {
+    return std::nullopt;
+  }
+  const scan_matching::CorrelationScanMatcher matcher(options.matcher, virtual_points);
+  // Exhaustive search is cheaper for the paper's small window (no max-grids to build).
+  const scan_matching::MatchResult match =
+      Candidates(searched) > 20000 ? matcher.MatchBranchAndBound(real, {}, searched)
+                                   : matcher.MatchExhaustive(real, {}, searched);
+  return Judge(match, matcher, real, searched, round);
+}
+
+MapCorrection MapLocaliser::Impl::Recast(const sensors::LaserScan& scan, const scan_matching::Points2& real,
+                                         const MapCorrection& round, const geometry::Pose2& correction) const {
+  MapCorrection again = round;
+  const auto refined =
+      Search(scan, real, geometry::Compose(round.map_from_body_before, correction), options.window, again);
+  again.recast = true;
+  again.first_score = round.first_score;
+  if (refined && again.accepted) again.correction = geometry::Compose(correction, again.correction);
+  return again;
+}
+
+std::optional<MapCorrection> MapLocaliser::Impl::AlongSearch(const sensors::LaserScan& scan,
+                                                             const scan_matching::Points2& real,
+                                                             const MapCorrection& round, const Found& found) const {
+  std::optional<MapCorrection> best;
+  const int steps = static_cast<int>(std::floor(options.along_search_m / options.along_search_step_m + 1e-9));
+  for (int k = -steps; k <= steps; ++k) {
+    if (k == 0) continue;
+    const double along_m = k * options.along_search_step_m;
+    const geometry::Pose2 moved{found.correction.x_m + along_m * found.weak.x(),
+                                found.correction.y_m + along_m * found.weak.y(), found.correction.theta_rad};
+    MapCorrection candidate = Recast(scan, real, round, moved);
+    // Only a place the scan pins down there (door frames, a corridor end) can tell, and it
+    // needs the evidence of a re-acquisition: a search this wide errs more (the team building's
+    // disturbed-compass walk took a place 1.3 m off that scored 0.68).
+    if (!candidate.accepted || candidate.degenerate || candidate.score < options.reacquire_min_score) continue;
+    if (!best || candidate.score > best->score) best = candidate;
+  }
+  if (!best || best->score < round.score + options.along_min_drop) return std::nullopt;
+  return best;
+}
+
 MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
-                                        const geometry::Pose2& odom_from_body) {
+                                        const geometry::Pose2& odom_from_body, bool on_prior) {
   MapCorrection round;
   round.stamp_s = scan.stamp_s;
   round.map_from_body_before = geometry::Compose(map_from_odom, odom_from_body);
   round.window_xy_m = std::max(window.size_x_m, window.size_y_m);
   round.window_theta_rad = window.size_theta_rad;
   const scan_matching::Points2 real = RealPoints(scan);
-  const scan_matching::Points2 virtual_points = VirtualPoints(scan, round.map_from_body_before);
   round.points = static_cast<int>(real.size());
-  round.virtual_points = static_cast<int>(virtual_points.size());
-  if (real.empty() || virtual_points.size() < static_cast<std::size_t>(options.min_hits)) {
-    Conclude(odom_from_body, round);  // the plan is not in sight: a failed round
-    return round;
+  const std::optional<Found> found = Search(scan, real, round.map_from_body_before, window, round);
+  round.first_score = round.score;
+  if (found && found->interior && NeedsRecast(found->correction)) {
+    // A large correction is judged on the plan as seen from where it puts the entity.
+    round = Recast(scan, real, round, found->correction);
+  } else if (found && round.accepted && round.degenerate && on_prior && options.along_search_m > 0.0) {
+    // The odometry's own position along the weak direction came from its motion prior, which
+    // may have slid (office seed 1 at 166.5 s: 0.47 m along the corridor in one keyframe).
+    if (auto along = AlongSearch(scan, real, round, *found)) round = *along;
   }
-  const scan_matching::CorrelationScanMatcher matcher(options.matcher, virtual_points);
-  // Exhaustive search is cheaper for the paper's small window (no max-grids to build).
-  const scan_matching::MatchResult match =
-      Candidates(window) > 20000 ? matcher.MatchBranchAndBound(real, {}, window)
-                                 : matcher.MatchExhaustive(real, {}, window);
-  Judge(match, matcher, real, round);
   Conclude(odom_from_body, round);
   return round;
 }
@@ -207,7 +299,9 @@ std::optional<MapCorrection> MapLocaliser::Update(const sensors::LaserScan& scan
                                                   bool force) {
   impl_->Accumulate(estimate.world_from_body);
   if (!estimate.reference_changed && !force && !impl_->options.every_scan) return std::nullopt;
-  return impl_->Round(scan, estimate.world_from_body);
+  const bool matched = estimate.status == odometry::MatchStatus::kMatched ||
+                       estimate.status == odometry::MatchStatus::kFirst;
+  return impl_->Round(scan, estimate.world_from_body, !matched || estimate.gated);
 }
 
 geometry::Pose2 MapLocaliser::MapFromBody(const geometry::Pose2& odom_from_body) const {

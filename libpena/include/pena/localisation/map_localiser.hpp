@@ -41,6 +41,23 @@ struct MapLocaliserOptions {
   // along the weak direction (door frames, corridor ends): then that direction is corrected too.
   double along_probe_m = 0.3;
   double along_min_drop = 0.05;
+  // A round whose correction is at least recast_min_m or recast_min_rad (and whose best grid
+  // pose lies inside the window, not on its edge) is judged again on a virtual scan re-cast
+  // where the correction puts the entity, matched in the paper's window: what is seen through
+  // doors and past corners changes with the position, so a right 0.66 m correction along the
+  // office corridor scored 0.61 on the scan cast from the wrong pose and 0.97 on the re-cast one.
+  // Huge values disable it (every round judged where it was cast).
+  double recast_min_m = 0.1;
+  double recast_min_rad = 0.017453292519943295;  // 1 deg
+  // When the odometry took this keyframe (or a direction of it) from its motion prior
+  // (degenerate, failed, no points, prior only, or gated), a degenerate round also tries the
+  // places along_search_step_m apart up to along_search_m either way along the weak direction,
+  // each re-cast and matched in the paper's window. A place the scan pins down there (not
+  // degenerate), scoring at least reacquire_min_score and along_min_drop above the expected
+  // place, is taken: the motion prior may have slid along the corridor (office seed 1 with
+  // odometry.prior_gate_agree_gyro_m = 0.1: 0.47 m in one keyframe at 166.5 s). 0: off.
+  double along_search_m = 1.0;
+  double along_search_step_m = 0.25;
   // Beyond the paper: a round at every scan, not only at reference changes, so a single badly
   // matched odometry scan (a corridor along which the odometry slid) is corrected as well.
   bool every_scan = false;
@@ -73,6 +90,8 @@ struct MapCorrection {
   double confidence = 0.0;                  // in [0, 1]: score x hit support x constraint
   double window_xy_m = 0.0;                 // searched window side
   double window_theta_rad = 0.0;
+  bool recast = false;        // judged again where a search put it (recast_min_m, along_search_m)
+  double first_score = 0.0;   // eq. 2 of the first search (= score when not recast)
 };
 
 // Matches keyframes of one entity's laser odometry against an a priori plan. Not thread-safe.
