@@ -58,6 +58,7 @@ struct LaserOdometry::Impl {
   geometry::Pose2 estimate;
   // The motion sensor's pose at the latest keyframe: priors are anchored there (see Predict).
   std::optional<geometry::Pose2> keyframe_motion_pose;
+  std::optional<double> keyframe_heading_sigma_rad;  // the heading filter's there (dead reckoning)
   geometry::Pose2 previous_estimate;  // at the previous scan
   geometry::Pose2 velocity;           // estimated motion over the previous scan interval
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
@@ -65,6 +66,7 @@ struct LaserOdometry::Impl {
   // prior-consistency gate's allowance grows with it.
   std::optional<geometry::Pose2> motion_since_keyframe;
   internal::GateConfirmation gate_confirmation;
+  int gated_in_row = 0;  // gated scans since the last keyframe (see prior_gate_fallback_scans)
   std::optional<double> last_scan_stamp_s;
   OdometryCounts counts;
 
@@ -78,6 +80,8 @@ struct LaserOdometry::Impl {
   // prior_gate_confirm scans all were (the motion sensor is what is wrong).
   enum class GateDecision { kInside, kGated, kTrusted };
   GateDecision CheckPriorGate(const OdometryEstimate& out);
+  double GateBaseRad() const;
+  void FallBackToPrior(const scan_matching::Points2& points, OdometryEstimate& out);
 };
 
 namespace {
@@ -216,6 +220,33 @@ scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Poin
   }
 }
 
+// The gate's heading allowance before the turn fraction. With dead reckoning and
+// prior_gate_gyro_sigmas > 0 it is that many standard deviations of the heading change since the
+// keyframe (the heading filter's at both ends, taken as independent); it widens by itself while
+// the compass is rejected or the gyro was silent. Otherwise the fixed prior_gate_rad.
+double LaserOdometry::Impl::GateBaseRad() const {
+  const std::optional<double>& now_rad = motion.heading_sigma_rad();
+  if (!(options.prior_gate_gyro_sigmas > 0.0) || !now_rad || !keyframe_heading_sigma_rad) {
+    return options.prior_gate_rad;
+  }
+  return options.prior_gate_gyro_sigmas * std::hypot(*now_rad, *keyframe_heading_sigma_rad);
+}
+
+// Gated scans that keep disagreeing with the prior and with each other (never trusted) mean the
+// scans cannot be matched here (aliasing, floor hits): go on from the motion prior as after a
+// failed match, so that the reference follows the entity instead of staying behind.
+void LaserOdometry::Impl::FallBackToPrior(const scan_matching::Points2& points,
+                                          OdometryEstimate& out) {
+  estimate = out.world_from_prior;
+  // The keyframe-anchored prior carries every keyframe's heading error along; the gyro + compass
+  // heading is bounded by the compass (ff1 of team seed 1 alone: 0.5 deg RMS). Take that one.
+  if (motion.mode() == MotionPrior::kDeadReckoning && motion.last_pose()) {
+    estimate.theta_rad = motion.last_pose()->theta_rad;
+  }
+  local_map.Clear();
+  TakeKeyframe(points, out);
+}
+
 void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEstimate& out) {
   geometry::Pose2 prior = out.world_from_prior;
   scan_matching::MatchResult result = Search(points, prior, out);
@@ -252,8 +283,11 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
   if (gate == GateDecision::kGated) {
     out.gated = true;  // the pose is the match's, but it anchors nothing
     ++counts.gated;
+    const int fallback = options.prior_gate_fallback_scans;
+    if (fallback > 0 && ++gated_in_row >= fallback) FallBackToPrior(points, out);
     return;
   }
+  gated_in_row = 0;
   window.Shrink();
   const geometry::Pose2 moved = geometry::Between(local_map.latest().world_from_body, estimate);
   // A deviation trusted after prior_gate_confirm scans must re-anchor the priors at once: without
@@ -278,7 +312,7 @@ LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const Odom
   const double fraction_rad = motion.mode() == MotionPrior::kDeadReckoning
                                   ? options.prior_gate_fraction_gyro
                                   : options.prior_gate_fraction;
-  const double allowed_rad = options.prior_gate_rad + fraction_rad * turned_rad;
+  const double allowed_rad = GateBaseRad() + fraction_rad * turned_rad;
   const double allowed_m = options.prior_gate_m + options.prior_gate_fraction * moved_m;
   const bool outside = std::abs(deviation.theta_rad) > allowed_rad ||
                        std::hypot(deviation.x_m, deviation.y_m) > allowed_m;
@@ -305,6 +339,8 @@ void LaserOdometry::Impl::TakeKeyframe(const scan_matching::Points2& points, Odo
                                fill_spacing_m, options.reference_fill_max_gap_m, max_gap_beams,
                                fill_max_range_m, options.reference_fill_band_spacing_m)});
   keyframe_motion_pose = motion.last_pose();
+  keyframe_heading_sigma_rad = motion.heading_sigma_rad();
+  gated_in_row = 0;
   matcher.emplace(options.matcher, local_map.Reference());
   out.reference_changed = true;
   ++counts.keyframes;

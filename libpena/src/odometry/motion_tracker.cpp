@@ -1,6 +1,7 @@
 #include "motion_tracker.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace pena::odometry::internal {
 namespace {
@@ -62,9 +63,12 @@ std::optional<geometry::Pose2> MotionTracker::OdometryPoseAt(const sensors::Lase
 geometry::Pose2 MotionTracker::TakeIncrement(const sensors::LaserScan& scan) {
   std::optional<geometry::Pose2> now;
   switch (mode_) {
-    case MotionPrior::kDeadReckoning:
-      now = dead_reckoning_.PriorAt(scan.stamp_s).world_from_body;
+    case MotionPrior::kDeadReckoning: {
+      const dead_reckoning::PosePrior prior = dead_reckoning_.PriorAt(scan.stamp_s);
+      now = prior.world_from_body;
+      heading_sigma_rad_ = std::sqrt(prior.covariance(2, 2));
       break;
+    }
     case MotionPrior::kOdometry:
       now = OdometryPoseAt(scan);
       break;

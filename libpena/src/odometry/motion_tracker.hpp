@@ -25,6 +25,9 @@ class MotionTracker {
   const std::optional<geometry::Pose2>& last_pose() const { return last_odometry_pose_; }
 
   MotionPrior mode() const { return mode_; }
+  // The heading filter's standard deviation at the last scan given to TakeIncrement (dead
+  // reckoning only: nullopt otherwise).
+  const std::optional<double>& heading_sigma_rad() const { return heading_sigma_rad_; }
   // Whether the heading filter rejected a compass reading (innovation-gated: a magnetic
   // disturbance) in the window_s before stamp_s. Dead reckoning only; false otherwise.
   bool CompassRejectedWithin(double stamp_s, double window_s) const;
@@ -36,6 +39,7 @@ class MotionTracker {
   MotionPrior mode_;
   dead_reckoning::HumanDeadReckoning dead_reckoning_;
   std::optional<geometry::Pose2> last_odometry_pose_;     // at the previous scan
+  std::optional<double> heading_sigma_rad_;               // at the previous scan
   std::optional<sensors::WheelOdometry> previous_wheel_, latest_wheel_;
   double stride_sum_m_ = 0.0;                             // since the previous scan
   std::optional<double> last_compass_rejected_s_;

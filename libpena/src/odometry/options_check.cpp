@@ -53,6 +53,8 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
   Require(o.prior_gate_fraction >= 0.0, "prior_gate_fraction", ">= 0", o.prior_gate_fraction);
   Require(o.prior_gate_fraction_gyro >= 0.0, "prior_gate_fraction_gyro", ">= 0",
           o.prior_gate_fraction_gyro);
+  Require(o.prior_gate_gyro_sigmas >= 0.0, "prior_gate_gyro_sigmas", ">= 0 (0: prior_gate_rad)",
+          o.prior_gate_gyro_sigmas);
   Require(o.prior_gate_m > 0.0, "prior_gate_m", "> 0 m", o.prior_gate_m);
   Require(o.prior_gate_confirm >= 1, "prior_gate_confirm", ">= 1 scans", o.prior_gate_confirm);
   Require(o.prior_gate_confirm_gyro >= 1, "prior_gate_confirm_gyro", ">= 1 scans",
@@ -61,6 +63,8 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           o.prior_gate_agree_gyro_m);
   Require(o.prior_gate_agree_gyro_rad > 0.0, "prior_gate_agree_gyro_rad", "> 0 rad",
           o.prior_gate_agree_gyro_rad);
+  Require(o.prior_gate_fallback_scans >= 0, "prior_gate_fallback_scans", ">= 0 scans (0: off)",
+          o.prior_gate_fallback_scans);
   Require(o.prior_gate_compass_window_s >= 0.0, "prior_gate_compass_window_s", ">= 0 s",
           o.prior_gate_compass_window_s);
   Require(o.stale_history_scans >= 0, "stale_history_scans", ">= 0 scans (0: no check)",

@@ -91,6 +91,13 @@ struct LaserOdometryOptions {
   // odometry does: its rotation allowance grows by this fraction instead (office seed 4: a
   // 47-point scan after a smoke dropout matched 40 deg off and passed the 25 % allowance).
   double prior_gate_fraction_gyro = 0.05;
+  // With dead reckoning the heading change since the keyframe is known to the gyro + compass
+  // filter's uncertainty (about 1 deg), and 10 deg (sized for wheel odometry) lets aliased
+  // matches become keyframes (team seed 1, ff1 in the open lobby, half its returns floor hits:
+  // a match 8 deg off a prior good to 0.4 deg, then 31 deg off to the end). > 0: the heading
+  // allowance is this many standard deviations of that change (the filter's heading sigmas at
+  // the keyframe and now, root-sum-square) instead of prior_gate_rad. 0: prior_gate_rad.
+  double prior_gate_gyro_sigmas = 0.0;
   double prior_gate_m = 0.3;                    // plus the fraction of the distance
   int prior_gate_confirm = 3;
   // The same count for people (dead reckoning with a gyro), kept apart because the two disagree:
@@ -105,6 +112,13 @@ struct LaserOdometryOptions {
   // plan localisation from 0.27 to 0.68 m (docs/odometry.md, sixth round continued).
   double prior_gate_agree_gyro_m = 0.0;
   double prior_gate_agree_gyro_rad = 0.05235987755982989;  // 3 deg
+  // After this many gated scans in a row that were never trusted (they disagree: only possible
+  // with prior_gate_agree_gyro_m > 0 or a count above this), the scan is handled like a failed
+  // match: the pose is the motion prior's (with dead reckoning: its position, and the gyro +
+  // compass filter's own heading, which does not carry keyframe errors along) and the reference
+  // restarts there, so that it does not stay behind a walking person (office seed 4 with the
+  // agreement gate: 8 s without a keyframe). 0: off. Figures: docs/odometry.md, issue 6.
+  int prior_gate_fallback_scans = 0;
   // ... except within this long after the heading filter rejected a compass reading (a
   // magnetic disturbance: the prior's heading is bent, the scans win on the count alone).
   double prior_gate_compass_window_s = 1.0;
