@@ -79,6 +79,7 @@ class Writer {
   // is written meanwhile never reaches it (volatile durability).
   bool MatchesParticipantOf(const Handle& publication) const {
     std::vector<eprosima::fastrtps::rtps::InstanceHandle_t> subscriptions;
+    // A middleware that cannot list them: do not wait for what cannot be seen.
     if (writer_->get_matched_subscriptions(subscriptions) != ReturnCode_t::RETCODE_OK) return true;
     for (const auto& subscription : subscriptions) {
       const Handle bytes = ToHandle(subscription);

@@ -180,9 +180,10 @@ fusion::FusionOutput FusionService::Apply(const fusion::FusionInput& input) {
       spdlog::info("{}: {} -> {}", change.entity_id, fusion::ToString(change.from),
                    fusion::ToString(change.to));
     }
-    // A lost or departed entity is not waited for in lockstep.
-    if (lockstep_order_ && (change.to == fusion::EntityLifecycle::kLost ||
-                            change.to == fusion::EntityLifecycle::kLeft)) {
+    // A lost entity is not waited for in lockstep. One that left is not waited for once its
+    // last samples arrived (LockstepOrder::Finished, from its status): its goodbye can overtake
+    // its last delta.
+    if (lockstep_order_ && change.to == fusion::EntityLifecycle::kLost) {
       lockstep_order_->Drop(change.entity_id);
     }
   }

@@ -210,10 +210,6 @@ std::size_t LockstepOrder::held() const {
   return count;
 }
 
-}  // namespace pena::services
-
-namespace pena::services {
-
 std::string LockstepOrder::Describe() const {
   std::ostringstream out;
   for (const auto& [id, entity] : entities_) {
