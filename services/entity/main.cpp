@@ -5,12 +5,11 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdlib>
-#include <iostream>
 
 #include "config_loader.hpp"
 #include "entity_options.hpp"
 #include "entity_service.hpp"
-#include "logging.hpp"
+#include "daemon_main.hpp"
 #include "pena/io/input_error.hpp"
 #include "signals.hpp"
 
@@ -106,44 +105,32 @@ int main(int argc, char** argv) {
   AddOptions(app, overrides);
   CLI11_PARSE(app, argc, argv);
   EntityServiceOptions options;
-  try {
+  const auto build = [&] {
     options = BuildOptions(overrides);
-    pena::services::SetupLogging("pena-entity", options.log_level, options.log_file);
-  } catch (const std::exception& error) {
-    std::cerr << "pena-entity: " << error.what() << '\n';
-    return EXIT_FAILURE;
-  }
-  pena::services::InstallStopSignals();
-  try {
-    pena::services::EntityService service(std::move(options));
-    const pena::services::EntityRunSummary summary = service.Run();
-    spdlog::info("{}: {} records, {} poses, {} deltas, {} reference scans, {} snapshots sent, "
-                 "{} send failures; {} corrections, {} global deltas received; line map version "
-                 "{} with {} segments{}",
-                 summary.entity_id, summary.records, summary.poses_sent, summary.deltas_sent,
-                 summary.reference_scans_sent, summary.snapshots_sent, summary.send_failures,
-                 summary.corrections_received, summary.global_deltas_received,
-                 summary.local_map_version, summary.local_map_segments,
-                 summary.interrupted ? " (stopped by a signal)" : "");
-    if (summary.answers_awaited > 0) {
-      spdlog::info("{}: lockstep: {} answers awaited, {} not received in time", summary.entity_id,
-                   summary.answers_awaited, summary.answers_missed);
-    }
-  } catch (const pena::services::DdsError& error) {
-    spdlog::critical("DDS failure: {}", error.what());
-    return 2;
-  } catch (const pena::io::InputError& error) {
-    // A signal while the live input waits for its first record ends the stream with nothing
-    // read: a clean stop, as a signal is at any later point.
-    if (pena::services::StopRequested()) {
+    return pena::services::DaemonLogging{options.log_level, options.log_file};
+  };
+  return pena::services::RunDaemon("pena-entity", build, [&] {
+    try {
+      pena::services::EntityService service(std::move(options));
+      const pena::services::EntityRunSummary summary = service.Run();
+      spdlog::info("{}: {} records, {} poses, {} deltas, {} reference scans, {} snapshots sent, "
+                   "{} send failures; {} corrections, {} global deltas received; line map version "
+                   "{} with {} segments{}",
+                   summary.entity_id, summary.records, summary.poses_sent, summary.deltas_sent,
+                   summary.reference_scans_sent, summary.snapshots_sent, summary.send_failures,
+                   summary.corrections_received, summary.global_deltas_received,
+                   summary.local_map_version, summary.local_map_segments,
+                   summary.interrupted ? " (stopped by a signal)" : "");
+      if (summary.answers_awaited > 0) {
+        spdlog::info("{}: lockstep: {} answers awaited, {} not received in time", summary.entity_id,
+                     summary.answers_awaited, summary.answers_missed);
+      }
+    } catch (const pena::io::InputError& error) {
+      // A signal while the live input waits for its first record ends the stream with nothing
+      // read: a clean stop, as a signal is at any later point.
+      if (!pena::services::StopRequested()) throw;
       spdlog::info("stopped by a signal before the first record ({})", error.what());
-      return EXIT_SUCCESS;
     }
-    spdlog::critical("{}", error.what());
-    return EXIT_FAILURE;
-  } catch (const std::exception& error) {
-    spdlog::critical("{}", error.what());
-    return EXIT_FAILURE;
-  }
-  return EXIT_SUCCESS;
+    return EXIT_SUCCESS;
+  });
 }

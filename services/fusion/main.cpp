@@ -6,7 +6,6 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdlib>
-#include <iostream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,7 +13,7 @@
 #include "config_loader.hpp"
 #include "fusion_options.hpp"
 #include "fusion_service.hpp"
-#include "logging.hpp"
+#include "daemon_main.hpp"
 #include "signals.hpp"
 
 namespace {
@@ -97,15 +96,11 @@ int main(int argc, char** argv) {
   AddOptions(app, overrides);
   CLI11_PARSE(app, argc, argv);
   FusionServiceOptions options;
-  try {
+  const auto build = [&] {
     options = BuildOptions(overrides);
-    pena::services::SetupLogging("pena-fusion", options.log_level, options.log_file);
-  } catch (const std::exception& error) {
-    std::cerr << "pena-fusion: " << error.what() << '\n';
-    return EXIT_FAILURE;
-  }
-  pena::services::InstallStopSignals();
-  try {
+    return pena::services::DaemonLogging{options.log_level, options.log_file};
+  };
+  return pena::services::RunDaemon("pena-fusion", build, [&] {
     pena::services::FusionService service(std::move(options));
     const pena::services::FusionRunSummary summary = service.Run();
     spdlog::info("stopped: {} inputs ({} refused), global map version {} with {} segments; "
@@ -113,12 +108,6 @@ int main(int argc, char** argv) {
                  summary.inputs, summary.problems, summary.global_version,
                  summary.global_segments, summary.global_deltas_sent, summary.snapshots_sent,
                  summary.corrections_sent);
-  } catch (const pena::services::DdsError& error) {
-    spdlog::critical("DDS failure: {}", error.what());
-    return 2;
-  } catch (const std::exception& error) {
-    spdlog::critical("{}", error.what());
-    return EXIT_FAILURE;
-  }
-  return EXIT_SUCCESS;
+    return EXIT_SUCCESS;
+  });
 }

@@ -5,9 +5,8 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdlib>
-#include <iostream>
 
-#include "logging.hpp"
+#include "daemon_main.hpp"
 #include "sensor_replay.hpp"
 #include "signals.hpp"
 
@@ -70,15 +69,11 @@ int main(int argc, char** argv) {
   AddOptions(app, arguments);
   CLI11_PARSE(app, argc, argv);
   SensorReplayOptions options;
-  try {
+  const auto build = [&] {
     options = BuildOptions(arguments);
-    pena::services::SetupLogging("pena-sensor-replay", options.log_level, {});
-  } catch (const std::exception& error) {
-    std::cerr << "pena-sensor-replay: " << error.what() << '\n';
-    return EXIT_FAILURE;
-  }
-  pena::services::InstallStopSignals();
-  try {
+    return pena::services::DaemonLogging{options.log_level, {}};
+  };
+  return pena::services::RunDaemon("pena-sensor-replay", build, [&] {
     pena::services::SensorReplay replay(std::move(options));
     const pena::services::SensorReplaySummary summary = replay.Run();
     spdlog::info("{}: published {} scans, {} gyro, {} compass, {} stride, {} wheel odometry "
@@ -87,12 +82,6 @@ int main(int argc, char** argv) {
                  summary.published[2], summary.published[3], summary.published[4],
                  summary.skipped_truth, summary.refused,
                  summary.interrupted ? " (stopped by a signal)" : "");
-  } catch (const pena::services::DdsError& error) {
-    spdlog::critical("DDS failure: {}", error.what());
-    return 2;
-  } catch (const std::exception& error) {
-    spdlog::critical("{}", error.what());
-    return EXIT_FAILURE;
-  }
-  return EXIT_SUCCESS;
+    return EXIT_SUCCESS;
+  });
 }
