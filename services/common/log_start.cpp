@@ -21,4 +21,10 @@ LogStart ReadLogStart(io::LogSource& source, const std::filesystem::path& input,
   return start;
 }
 
+std::optional<sensors::SensorRecord> NextRecord(std::vector<sensors::SensorRecord>& read_ahead,
+                                                std::size_t& taken, io::LogSource& source) {
+  if (taken < read_ahead.size()) return std::move(read_ahead[taken++]);
+  return source.Next();
+}
+
 }  // namespace pena::services

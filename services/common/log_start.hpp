@@ -4,6 +4,7 @@
 // One definition for both, because the replay publishes under the entity id the entity then
 // looks for.
 
+#include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -25,5 +26,11 @@ struct LogStart {
 // ended before any record: the caller words that error for its input.
 LogStart ReadLogStart(io::LogSource& source, const std::filesystem::path& input,
                       const std::string& entity_id, std::optional<sensors::EntityKind> kind);
+
+// The next record of a stream whose start ReadLogStart took: first the records read ahead (moved
+// out in order; `taken` counts them), then the source's own, so the service sees the stream as if
+// nothing had been read ahead. Empty at the end of the stream.
+std::optional<sensors::SensorRecord> NextRecord(std::vector<sensors::SensorRecord>& read_ahead,
+                                                std::size_t& taken, io::LogSource& source);
 
 }  // namespace pena::services

@@ -165,12 +165,7 @@ EntityRunSummary EntityService::Run() {
     });
   }
   while (!StopRequested()) {
-    std::optional<sensors::SensorRecord> record;
-    if (ahead < read_ahead_.size()) {
-      record = std::move(read_ahead_[ahead++]);
-    } else {
-      record = source_->Next();
-    }
+    std::optional<sensors::SensorRecord> record = NextRecord(read_ahead_, ahead, *source_);
     if (!record) break;
     // Pace the log: mission time runs `rate` times faster than wall time.
     if (options_.rate > 0.0 && !live_source_) {

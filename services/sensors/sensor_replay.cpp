@@ -112,12 +112,7 @@ SensorReplaySummary SensorReplay::Run() {
   double last_stamp_s = first_stamp_s;
   std::size_t ahead = 0;
   while (!StopRequested()) {
-    std::optional<sensors::SensorRecord> record;
-    if (ahead < read_ahead_.size()) {
-      record = std::move(read_ahead_[ahead++]);
-    } else {
-      record = source_->Next();
-    }
+    std::optional<sensors::SensorRecord> record = NextRecord(read_ahead_, ahead, *source_);
     if (!record) break;
     last_stamp_s = sensors::StampOf(*record);
     if (options_.rate > 0.0) {
