@@ -23,6 +23,7 @@ fail() { echo "FAILED: $*"; exit 1; }
 command -v ip >/dev/null || skip "no ip command (iproute2)"
 command -v unshare >/dev/null || skip "no unshare command (util-linux)"
 
+source "$(dirname "$0")/../common/veth_pair.sh"
 tag="plo$$"
 ns="${tag}a" peer="${tag}b"
 work=$(mktemp -d /tmp/pena-loopback-only.XXXXXX)
@@ -30,27 +31,13 @@ capture_pid=""
 cleanup() {
   [ -n "$capture_pid" ] && kill "$capture_pid" 2>/dev/null
   wait 2>/dev/null
-  ip netns del "$ns" 2>/dev/null
-  ip netns del "$peer" 2>/dev/null
+  veth_pair_teardown "$ns" "$peer"
   rm -rf "$work"
 }
 trap cleanup EXIT
 
-ip netns add "$ns" 2>/dev/null || skip "cannot create network namespaces here"
-ip netns add "$peer" || exit 1
-ip link add "${tag}x" type veth peer name "${tag}y" || skip "cannot create a veth pair here"
-ip link set "${tag}x" netns "$ns"
-ip link set "${tag}y" netns "$peer"
-ip -n "$ns" addr add 10.78.0.1/24 dev "${tag}x"
-ip -n "$peer" addr add 10.78.0.2/24 dev "${tag}y"
-for pair in "$ns ${tag}x" "$peer ${tag}y"; do
-  set -- $pair
-  ip netns exec "$1" sysctl -qw net.ipv6.conf.all.disable_ipv6=1 2>/dev/null
-  ip -n "$1" link set lo up
-  ip -n "$1" link set "$2" up
-done
+veth_pair_setup "$ns" "$peer" "${tag}x" "${tag}y" 10.78.0.1 10.78.0.2
 ip -n "$ns" route add default via 10.78.0.2
-ip -n "$ns" route add 224.0.0.0/4 dev "${tag}x"
 export FASTRTPS_DEFAULT_PROFILES_FILE="$dds_dir/pena-loopback.xml"
 
 # Runs "$@" in the namespace with a private /dev/shm (shared by everything "$@" starts).

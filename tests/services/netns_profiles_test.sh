@@ -12,6 +12,7 @@ skip() { echo "SKIPPED: $*"; exit 77; }
 command -v ip >/dev/null || skip "no ip command (iproute2)"
 command -v unshare >/dev/null || skip "no unshare command (util-linux)"
 
+source "$(dirname "$0")/../common/veth_pair.sh"
 tag="pena$$"
 ns_a="${tag}a"
 ns_b="${tag}b"
@@ -19,24 +20,11 @@ pids=()
 cleanup() {
   for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null; done
   wait 2>/dev/null
-  ip netns del "$ns_a" 2>/dev/null
-  ip netns del "$ns_b" 2>/dev/null
+  veth_pair_teardown "$ns_a" "$ns_b"
 }
 trap cleanup EXIT
 
-ip netns add "$ns_a" 2>/dev/null || skip "cannot create network namespaces here"
-ip netns add "$ns_b" || exit 1
-ip link add "${tag}va" type veth peer name "${tag}vb" || skip "cannot create a veth pair here"
-ip link set "${tag}va" netns "$ns_a"
-ip link set "${tag}vb" netns "$ns_b"
-ip -n "$ns_a" addr add 10.77.0.1/24 dev "${tag}va"
-ip -n "$ns_b" addr add 10.77.0.2/24 dev "${tag}vb"
-for pair in "$ns_a ${tag}va" "$ns_b ${tag}vb"; do
-  set -- $pair
-  ip -n "$1" link set lo up
-  ip -n "$1" link set "$2" up
-  ip -n "$1" route add 224.0.0.0/4 dev "$2"  # multicast discovery goes over the veth
-done
+veth_pair_setup "$ns_a" "$ns_b" "${tag}va" "${tag}vb" 10.77.0.1 10.77.0.2
 
 # Prefix that runs dds_ping in a namespace with a private /dev/shm (every step execs, so $! of
 # a backgrounded run is dds_ping itself).
