@@ -158,6 +158,7 @@ template <class Sample>
 void LiveSensorSource::TakeSample(const Sample& sample, SensorTopic topic) {
   const std::size_t index = Index(topic);
   ++counts_.received[index];
+  seq_gaps_.Saw(sample.seq());
   SensorCheck check = FromDds(sample);
   if (!check.record) {
     const std::size_t refused = ++counts_.refused[index];
@@ -266,6 +267,7 @@ void LiveSensorSource::End(const std::string& reason) {
   if (ended_) return;
   ended_ = true;
   end_reason_ = reason;
+  counts_.gaps = seq_gaps_.Counts();
   LogSummary();
 }
 
@@ -281,6 +283,22 @@ void LiveSensorSource::LogSummary() const {
                "no-returns; {} samples of other entities ignored",
                options_.entity_id, end_reason_, counts_.released + merger_.held(), topics,
                counts_.bad_ranges, other_entity_.load());
+  const SeqGapCounts& gaps = counts_.gaps;
+  if (gaps.missed_at_start > 0) {
+    spdlog::warn("{}: the first {} sensor samples never arrived (the entity joined the stream "
+                 "late); the chain started from the first that did",
+                 options_.entity_id, gaps.missed_at_start);
+  }
+  if (gaps.missed > 0) {
+    spdlog::warn("{}: {} sensor samples never arrived after the first (lost on the way, or "
+                 "overwritten in a keep-last history); the chain went on from what arrived",
+                 options_.entity_id, gaps.missed);
+  }
+  if (gaps.repeated_or_late > 0) {
+    spdlog::warn("{}: {} sensor samples arrived twice or after their gap had been given up "
+                 "(a restarted publisher counts from 1 again)",
+                 options_.entity_id, gaps.repeated_or_late);
+  }
 }
 
 }  // namespace pena::services

@@ -16,6 +16,7 @@
 #include "pena/io/log_source.hpp"
 #include "pena_dds/sensorsPubSubTypes.h"
 #include "sensor_merger.hpp"
+#include "seq_gaps.hpp"
 #include "work_queue.hpp"
 
 namespace pena::services {
@@ -45,6 +46,7 @@ struct LiveInputCounts {
   std::array<std::size_t, kSensorTopicCount> late{};      // older than what was released
   std::size_t released = 0;
   std::size_t bad_ranges = 0;    // NaN or negative ranges made no-returns
+  SeqGapCounts gaps;             // publisher numbers that never arrived (set when the input ends)
 };
 
 class LiveSensorSource : public io::LogSource {
@@ -87,6 +89,7 @@ class LiveSensorSource : public io::LogSource {
   LiveSensorOptions options_;
   io::LogDescription description_;
   SensorMerger merger_;
+  SeqGaps seq_gaps_;
   LiveInputCounts counts_;
   std::function<void()> wait_hook_;
   std::optional<pena_dds::SensorStreamStatus> end_marker_;

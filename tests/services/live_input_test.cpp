@@ -169,6 +169,8 @@ TEST(LiveInput, ReplayedSensorTopicsGiveTheTrajectoryOfTheFileRun) {
   EXPECT_NE(robot_log.find("pena/sensors/wheel_odometry"), std::string::npos) << robot_log;
   for (const std::string& log : {ff1_log, robot_log}) {
     EXPECT_EQ(log.find("late on this topic"), std::string::npos) << log;
+    EXPECT_EQ(log.find("never arrived"), std::string::npos) << log;
+    EXPECT_EQ(log.find("arrived twice"), std::string::npos) << log;
     EXPECT_FALSE(std::regex_search(log, std::regex("[1-9][0-9]* refused"))) << log;
     EXPECT_EQ(log.find(" 0 samples of other entities ignored"), std::string::npos) << log;
   }
