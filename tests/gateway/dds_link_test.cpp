@@ -35,15 +35,18 @@ double WallS() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
-// `count` separate walls starting at row `row0` (3 m long, 1 m apart along x, 0.5 m along y).
+// `count` separate walls starting at row `row0` (about 3 m long, 1 m apart along x, 0.5 m along
+// y), their ends scattered by a few centimetres so that the gateway packing cannot code them as a
+// regular grid (about 9-10 bytes each).
 std::vector<line_map::LineSegment> Walls(int count, int row0) {
   std::vector<line_map::LineSegment> walls;
   for (int i = 0; i < count; ++i) {
     line_map::LineSegment wall;
-    const double x = 4.0 * (i % 40);
-    const double y = 0.5 * (row0 + i / 40);
+    const int scatter = (i * 7919) % 1009;
+    const double x = 4.0 * (i % 40) + 0.0003 * scatter;
+    const double y = 0.5 * (row0 + i / 40) + 0.0001 * scatter;
     wall.segment.start_m = {x, y};
-    wall.segment.end_m = {x + 3.0, y};
+    wall.segment.end_m = {x + 3.0 - 0.0002 * scatter, y + 0.00007 * ((scatter * 31) % 1009)};
     wall.support_cells = 60;
     wall.observations = 10;
     walls.push_back(wall);
@@ -187,7 +190,7 @@ TEST(GatewayDds, PosesAndLargeMapsCrossBetweenTwoDomains) {
 
   // A snapshot larger than a frame, as fusion publishes for a late joiner.
   line_map::LineMap source;
-  source.Integrate(Walls(1600, 0), "global");
+  source.Integrate(Walls(2040, 0), "global");
   const line_map::MapSnapshot snapshot = source.Snapshot();
   ASSERT_GT(LinkBytes(MapChange{"global", snapshot, true}), FrameLimits{}.max_payload_bytes);
   pena_dds::GlobalMapSnapshot snapshot_sample = services::ToDdsGlobalMapSnapshot(snapshot, "global", 1.0);
@@ -198,9 +201,9 @@ TEST(GatewayDds, PosesAndLargeMapsCrossBetweenTwoDomains) {
       << pair.post().stats().samples_published;
 
   // Then deltas: one larger than a frame, one small.
-  const line_map::MapDelta big = source.Integrate(Walls(1500, 40), "global");
+  const line_map::MapDelta big = source.Integrate(Walls(2040, 60), "global");
   ASSERT_GT(LinkBytes(MapChange{"global", big, false}), FrameLimits{}.max_payload_bytes);
-  const line_map::MapDelta small = source.Integrate(Walls(3, 80), "global");
+  const line_map::MapDelta small = source.Integrate(Walls(3, 120), "global");
   for (const line_map::MapDelta* delta : {&big, &small}) {
     pena_dds::GlobalMapDelta sample = services::ToDdsGlobalMapDelta(*delta, "global", 2.0);
     ASSERT_TRUE(delta_writer.Write(sample));

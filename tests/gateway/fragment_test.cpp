@@ -22,7 +22,7 @@ using testing::IdealLink;
 using testing::LinkPair;
 
 // `count` separate walls (3 m long, 1 m apart along x, 0.5 m apart along y): one delta that adds
-// them all, about 18 bytes per wall on the link.
+// them all, about 7 bytes per wall in the gateway packing (this regular grid codes well).
 MapChange BigDelta(const std::string& map_id, int count, line_map::LineMap* map) {
   std::vector<line_map::LineSegment> walls;
   for (int i = 0; i < count; ++i) {
@@ -124,7 +124,7 @@ TEST(Fragments, MapLargerThanAFrameCrossesThroughLoss) {
   near.budget_bit_s = 57600.0;
   LinkPair pair(near, Endpoint(2), radio, back);
   line_map::LineMap source;
-  const MapChange delta = BigDelta("global", 1600, &source);
+  const MapChange delta = BigDelta("global", 3000, &source);
   ASSERT_GT(PackedBytes(delta), FrameLimits{}.max_payload_bytes) << "needs more than one frame";
   pair.near.Offer(delta);
   // A reset snapshot of another map, just as large (the snapshot path).

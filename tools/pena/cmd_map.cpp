@@ -153,6 +153,10 @@ void RunMap(const MapArgs& args) {
   grid::GridOptions grid_options;
   grid_options.resolution_m = args.resolution_m;
   MapRun run(grid_options);
+  line_map::LineMapOptions map_options;
+  map_options.refit_band_m = args.refit_band_m;
+  map_options.absorb_distance_m = args.absorb_distance_m;
+  run.map = line_map::LineMap(map_options);
   if (!args.trajectory.empty()) {
     trajectory = io::ReadTum(args.trajectory);
     if (trajectory.empty()) throw std::runtime_error(args.trajectory + ": no poses");
@@ -204,6 +208,18 @@ void AddMapCommand(CLI::App& app) {
       ->add_option("--min-length", args->min_length_m,
                    "Shortest line segment kept, metres (line extraction min_length_m)")
       ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  command
+      ->add_option("--refit-band", args->refit_band_m,
+                   "Bounded merge drift, metres: a piece farther than this from a wall's line "
+                   "only extends it (LineMap refit_band_m; 0 = off)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  command
+      ->add_option("--absorb-distance", args->absorb_distance_m,
+                   "With --refit-band: pieces this close to a wall's line are absorbed "
+                   "(span only) instead of becoming duplicates (LineMap absorb_distance_m)")
+      ->check(CLI::Range(0.0, 0.29))
       ->capture_default_str();
   command->add_flag("--skip-malformed", args->read.skip_malformed,
                     "Skip malformed lines (and count them) instead of stopping at the first");

@@ -24,7 +24,9 @@ struct MapArgs {
   std::string trajectory;
   std::string out;
   double resolution_m = 0.05;
-  double min_length_m = 0.30;  // shortest segment kept (line extraction's min_length_m)
+  double min_length_m = 0.35;  // shortest segment kept (extraction's min_length_m, library: 0.30)
+  double refit_band_m = 0.0;       // LineMap bounded drift (0 = off), docs/line-map.md
+  double absorb_distance_m = 0.0;  // LineMap absorption of near-duplicates (with the band)
   bool online = false;
   bool slam = true;
   bool ignore_logged = false;  // run the odometry (+ SLAM) even when the scans carry poses  // without a trajectory and logged poses: odometry + keyframe SLAM

@@ -30,6 +30,10 @@ void ValidateOptions(const LineMapOptions& options) {
           "line_map.merge_angle_rad must be in (0, pi/2) (radians)", options.merge_angle_rad);
   Require(std::isfinite(options.max_gap_m) && options.max_gap_m >= 0.0,
           "line_map.max_gap_m must be >= 0 (metres)", options.max_gap_m);
+  Require(std::isfinite(options.refit_band_m) && options.refit_band_m >= 0.0,
+          "line_map.refit_band_m must be >= 0 (metres)", options.refit_band_m);
+  Require(std::isfinite(options.absorb_distance_m) && options.absorb_distance_m >= 0.0,
+          "line_map.absorb_distance_m must be >= 0 (metres)", options.absorb_distance_m);
 }
 
 // Checks one fresh segment before anything changes, so a bad batch leaves the map untouched.
@@ -106,14 +110,32 @@ MapDelta LineMap::Integrate(const std::vector<LineSegment>& fresh, const std::st
 void LineMap::IntegrateOne(LineSegment fresh) {
   // Absorb matching walls until none is left: a refit that grew may reach the next piece
   // (A absorbs B, then the longer A reaches C). Each round refits from the original parts.
+  // With a refit band, a fresh piece off the stored line only extends it (bounded drift), and
+  // one a little farther than merge_distance_m is absorbed that way instead of becoming a
+  // parallel duplicate.
+  const bool bounded = options_.refit_band_m > 0.0;
+  const double first_distance_m =
+      bounded ? std::max(options_.merge_distance_m, options_.absorb_distance_m)
+              : options_.merge_distance_m;
   std::vector<std::int64_t> members;
   LineSegment merged = fresh;
-  for (auto matches = FindMatches(merged, members); !matches.empty();
-       matches = FindMatches(merged, members)) {
+  for (auto matches = FindMatches(merged, members, first_distance_m); !matches.empty();
+       matches = FindMatches(merged, members, options_.merge_distance_m)) {
     members.insert(members.end(), matches.begin(), matches.end());
     std::sort(members.begin(), members.end());
     std::vector<const LineSegment*> parts;
     for (const std::int64_t id : members) parts.push_back(&segments_.at(id));
+    if (bounded &&
+        !detail::WithinBand(fresh.segment, detail::Refit(parts).segment, options_.refit_band_m)) {
+      // The side with more evidence keeps its line; the other only widens the span.
+      double stored_weight = 0.0;
+      for (const LineSegment* part : parts) stored_weight += detail::Weight(*part);
+      merged = QuantiseSegment(
+          stored_weight >= detail::Weight(fresh)
+              ? detail::Refit(parts, {&fresh})
+              : detail::OrientLike(detail::Refit({&fresh}, parts), parts.front()->segment));
+      continue;
+    }
     parts.push_back(&fresh);
     merged = QuantiseSegment(detail::Refit(parts));
   }
@@ -140,11 +162,14 @@ void LineMap::IntegrateOne(LineSegment fresh) {
 }
 
 std::vector<std::int64_t> LineMap::FindMatches(const LineSegment& segment,
-                                               const std::vector<std::int64_t>& exclude) const {
+                                               const std::vector<std::int64_t>& exclude,
+                                               double distance_m) const {
   // A linear scan: maps of a building hold hundreds of segments; a spatial index can come later.
+  LineMapOptions options = options_;
+  options.merge_distance_m = distance_m;
   std::vector<std::int64_t> matches;
   for (const auto& [id, stored] : segments_) {
-    if (!Contains(exclude, id) && detail::SameWall(segment.segment, stored.segment, options_)) {
+    if (!Contains(exclude, id) && detail::SameWall(segment.segment, stored.segment, options)) {
       matches.push_back(id);
     }
   }

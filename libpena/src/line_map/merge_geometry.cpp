@@ -4,16 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace pena::line_map::detail {
 namespace {
-
-// How much a part pulls the refit: hits if the extractor counted them, else cells, else length.
-double Weight(const LineSegment& part) {
-  if (part.observations > 0.0) return part.observations;
-  if (part.support_cells > 0.0) return part.support_cells;
-  return std::max(geometry::Length(part.segment), kCoordinateQuantumM);
-}
 
 // Mean squared distance to a line of a segment whose endpoints lie e0 and e1 from it (signed):
 // the integral of (e0 + s (e1 - e0))^2 over s in [0, 1].
@@ -46,7 +40,30 @@ bool SameWall(const geometry::Segment2& a, const geometry::Segment2& b,
   return std::max(low - long_m, -high) <= options.max_gap_m;
 }
 
-LineSegment Refit(const std::vector<const LineSegment*>& parts) {
+double Weight(const LineSegment& part) {
+  if (part.observations > 0.0) return part.observations;
+  if (part.support_cells > 0.0) return part.support_cells;
+  return std::max(geometry::Length(part.segment), kCoordinateQuantumM);
+}
+
+LineSegment OrientLike(LineSegment line, const geometry::Segment2& reference) {
+  if ((line.segment.end_m - line.segment.start_m).dot(reference.end_m - reference.start_m) < 0.0) {
+    std::swap(line.segment.start_m, line.segment.end_m);
+  }
+  return line;
+}
+
+bool WithinBand(const geometry::Segment2& piece, const geometry::Segment2& line, double band_m) {
+  const double length_m = geometry::Length(line);
+  if (length_m <= 0.0) return false;
+  const Eigen::Vector2d u = (line.end_m - line.start_m) / length_m;
+  const Eigen::Vector2d normal(-u.y(), u.x());
+  return std::abs(normal.dot(piece.start_m - line.start_m)) <= band_m &&
+         std::abs(normal.dot(piece.end_m - line.start_m)) <= band_m;
+}
+
+LineSegment Refit(const std::vector<const LineSegment*>& parts,
+                  const std::vector<const LineSegment*>& span_only) {
   // Each part is a uniform mass along its segment: its scatter about the common centroid is the
   // offset of its midpoint plus d d^T / 12 (the second moment of a uniform segment of vector d).
   double total_weight = 0.0;
@@ -74,7 +91,10 @@ LineSegment Refit(const std::vector<const LineSegment*>& parts) {
   double low = std::numeric_limits<double>::infinity();
   double high = -low;
   double weighted_square_m2 = 0.0;
-  for (const LineSegment* part : parts) {
+  std::vector<const LineSegment*> all = parts;
+  all.insert(all.end(), span_only.begin(), span_only.end());
+  for (const LineSegment* part : span_only) total_weight += Weight(*part);
+  for (const LineSegment* part : all) {
     const double e0 = normal.dot(part->segment.start_m - centroid);
     const double e1 = normal.dot(part->segment.end_m - centroid);
     weighted_square_m2 += Weight(*part) * (part->rms_error_m * part->rms_error_m +
@@ -83,6 +103,8 @@ LineSegment Refit(const std::vector<const LineSegment*>& parts) {
       low = std::min(low, u.dot(p - centroid));
       high = std::max(high, u.dot(p - centroid));
     }
+  }
+  for (const LineSegment* part : parts) {
     merged.support_cells += part->support_cells;
     merged.observations += part->observations;
   }

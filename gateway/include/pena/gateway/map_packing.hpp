@@ -1,8 +1,9 @@
 #pragma once
 // The gateway's compact encoding of line-map deltas and snapshots (docs/gateway.md): endpoints
 // in whole millimetres, each segment's id and start delta-coded against the previous segment, its
-// end against its own start, all as zig-zag varints; provenance strings once per message in a
-// table. Exact for what a LineMap produces, so the far side's map equals the near side's.
+// end against its own start, all as adaptive Rice codes on a bit stream (rice_coder.hpp);
+// provenance strings once per message in a table, and one bit when a segment's list repeats the
+// previous one's. Exact for what a LineMap produces, so the far side's map equals the near side's.
 
 #include <optional>
 #include <string>
@@ -13,7 +14,8 @@
 namespace pena::gateway {
 
 // Packs the changed segments of a delta (versions travel in MapUpdate). Throws
-// std::invalid_argument for a value not on the map's quanta (only LineMap output is exact).
+// std::invalid_argument for a value not on the map's quanta (only LineMap output is exact) and
+// for removed ids that do not increase (MapDelta keeps them sorted).
 std::string PackDelta(const line_map::MapDelta& delta);
 // Unpacks PackDelta bytes into `delta` (versions set by the caller); nullopt and `error` set
 // (with the byte offset) for malformed bytes.
