@@ -6,6 +6,11 @@
 // then, and for comparison how many of the first scans alone were right (best hypothesis of the
 // first whole-plan search).
 //   bench_global_localisation [POSES=100] [SIM_SEED=1] [PICK_SEED=1]
+// Environment (diagnosis; the figures are unchanged without them): PENA_BENCH_TRACE=1 prints
+// every keyframe's leader and the track at the true pose, PENA_BENCH_ONLY=3,17 runs only those
+// of the picked starts, PENA_BENCH_SET=name=value,... sets tracker options.
+// A start that has walked 30 m without anchoring is answered by the leader then, as one whose
+// log ends first; the count of starts the log leaves less than 1 m / 3 m of walk after is printed.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -50,6 +55,19 @@ std::vector<std::size_t> CorridorStarts(const sim::EntityRecording& entity) {
   return starts;
 }
 
+// Metres the entity walks from the start record to the end of the log (truth).
+double WalkLeft(const sim::EntityRecording& entity, std::size_t start) {
+  double walked_m = 0.0;
+  std::optional<geometry::Pose2> previous;
+  for (std::size_t i = start; i < entity.records.size(); ++i) {
+    const auto* t = std::get_if<sensors::GroundTruth>(&entity.records[i]);
+    if (!t) continue;
+    if (previous) walked_m += std::hypot(t->world_from_body.x_m - previous->x_m, t->world_from_body.y_m - previous->y_m);
+    previous = t->world_from_body;
+  }
+  return walked_m;
+}
+
 struct Trial {
   bool anchored = false;
   Errors anchor, first_scan;
@@ -62,10 +80,60 @@ struct Trial {
   geometry::Pose2 leader_truth;
 };
 
+// PENA_BENCH_SET=name=value,...: tracker options for comparing variants on the same starts.
+void ApplySettings(localisation::GlobalTrackerOptions& o) {
+  const char* list = std::getenv("PENA_BENCH_SET");
+  if (!list) return;
+  std::string text(list);
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    std::size_t end = text.find(',', begin);
+    if (end == std::string::npos) end = text.size();
+    const std::string item = text.substr(begin, end - begin);
+    begin = end + 1;
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos) continue;
+    const std::string name = item.substr(0, eq);
+    const double value = std::atof(item.c_str() + eq + 1);
+    if (name == "min_agreement") o.min_agreement = value;
+    else if (name == "decide_margin_beams") o.decide_margin_beams = value;
+    else if (name == "drop_margin_beams") o.drop_margin_beams = value;
+    else if (name == "max_keyframes") o.max_keyframes = static_cast<int>(value);
+    else if (name == "min_keyframes") o.min_keyframes = static_cast<int>(value);
+    else if (name == "through_weight") o.through_weight = value;
+    else if (name == "final_keyframes") o.final_keyframes = static_cast<int>(value);
+    else {
+      std::fprintf(stderr, "PENA_BENCH_SET: unknown tracker option %s\n", name.c_str());
+      std::exit(2);
+    }
+  }
+}
+
+// PENA_BENCH_TRACE=1: per keyframe, the rank and evidence of the track at the true pose.
+void Trace(const localisation::GlobalResult& ranked, const geometry::Pose2& truth, double walked_m) {
+  const auto& h = ranked.hypotheses;
+  int true_rank = -1;
+  for (std::size_t r = 0; r < h.size() && true_rank < 0; ++r) {
+    if (localisation::SamePlace(h[r].map_from_body, truth)) true_rank = static_cast<int>(r);
+  }
+  std::printf("  kf walked %5.1f truth %6.2f %6.2f %6.1f: %zu tracks, leader %6.2f %6.2f %6.1f ev %6.0f ag %.2f",
+              walked_m, truth.x_m, truth.y_m, truth.theta_rad / kDeg, h.size(), h[0].map_from_body.x_m,
+              h[0].map_from_body.y_m, h[0].map_from_body.theta_rad / kDeg, h[0].score, h[0].agreement);
+  if (h.size() > 1) std::printf(", 2nd %6.2f %6.2f ev %6.0f", h[1].map_from_body.x_m, h[1].map_from_body.y_m, h[1].score);
+  if (true_rank >= 0) {
+    std::printf(", true rank %d ev %6.0f ag %.2f\n", true_rank, h[static_cast<std::size_t>(true_rank)].score,
+                h[static_cast<std::size_t>(true_rank)].agreement);
+  } else {
+    std::printf(", true not followed\n");
+  }
+}
+
 Trial Run(const sim::EntityRecording& entity, const std::vector<geometry::Segment2>& plan, std::size_t start) {
   Trial trial;
+  const bool trace = std::getenv("PENA_BENCH_TRACE") != nullptr;
   localisation::LocalisationChainOptions options;
   options.global_start = true;
+  ApplySettings(options.tracker);
   const sensors::GroundTruth& first_truth = std::get<sensors::GroundTruth>(entity.records[start]);
   trial.start_truth = first_truth.world_from_body;
   const std::clock_t cpu_start = std::clock();
@@ -90,6 +158,7 @@ Trial Run(const sim::EntityRecording& entity, const std::vector<geometry::Segmen
     first_scan = false;
     if (pose->global && !pose->global->hypotheses.empty()) {
       trial.leader = pose->global->hypotheses.front().map_from_body, trial.leader_truth = truth;
+      if (trace) Trace(*pose->global, truth, trial.walked_m);
     }
     if (!pose->anchored) continue;
     trial.anchored = true;
@@ -130,9 +199,26 @@ int main(int argc, char** argv) {
   std::mt19937 rng(pick_seed);
   std::shuffle(starts.begin(), starts.end(), rng);
   starts.resize(std::min<std::size_t>(starts.size(), static_cast<std::size_t>(poses)));
-  int good = 0, anchored = 0, first_good = 0, forced = 0;
+  int good = 0, anchored = 0, first_good = 0, forced = 0, short_1m = 0, short_3m = 0;
   std::vector<double> cpu_s, walked_m, mission_s;
+  // PENA_BENCH_ONLY=3,17: run only these of the picked starts (0-based), for diagnosis.
+  std::vector<int> only;
+  if (const char* list = std::getenv("PENA_BENCH_ONLY")) {
+    for (const char* p = list; *p;) {
+      char* end = nullptr;
+      only.push_back(static_cast<int>(std::strtol(p, &end, 10)));
+      p = *end ? end + 1 : end;
+    }
+  }
+  // Starts the log leaves too little walk after to decide (min_travel_m 3 m): fair to count apart.
   for (const std::size_t start : starts) {
+    const double left_m = WalkLeft(entity, start);
+    short_1m += left_m < 1.0 ? 1 : 0;
+    short_3m += left_m < 3.0 ? 1 : 0;
+  }
+  for (std::size_t index = 0; index < starts.size(); ++index) {
+    if (!only.empty() && std::find(only.begin(), only.end(), static_cast<int>(index)) == only.end()) continue;
+    const std::size_t start = starts[index];
     const Trial t = Run(entity, *office.apriori, start);
     first_good += t.first_found && t.first_scan.ok() ? 1 : 0;
     anchored += t.anchored ? 1 : 0;
@@ -140,8 +226,8 @@ int main(int argc, char** argv) {
     forced += t.forced ? 1 : 0;
     cpu_s.push_back(t.cpu_s);
     if (t.anchored) walked_m.push_back(t.walked_m), mission_s.push_back(t.mission_s);
-    std::printf("start %6.2f %6.2f %7.1f deg: %s", t.start_truth.x_m, t.start_truth.y_m,
-                t.start_truth.theta_rad / kDeg, t.anchored ? "anchored" : t.forced ? "log ended, leader" : "nothing");
+    std::printf("#%zu start %6.2f %6.2f %7.1f deg: %s", index, t.start_truth.x_m, t.start_truth.y_m,
+                t.start_truth.theta_rad / kDeg, t.anchored ? "anchored" : !t.forced ? "nothing" : t.walked_m >= kGiveUpWalk_m ? "30 m walked, leader" : "log ended, leader");
     if (t.anchored || t.forced) {
       std::printf(" after %.1f m / %.1f s, %d searches, error %.3f m %.2f deg%s (at %.2f %.2f -> %.2f %.2f %.1f deg)",
                   t.walked_m, t.mission_s, t.searches, t.anchor.position_m, t.anchor.heading_deg,
@@ -157,5 +243,6 @@ int main(int argc, char** argv) {
               good, starts.size(), anchored, forced, first_good, Median(cpu_s),
               cpu_s.empty() ? 0.0 : *std::max_element(cpu_s.begin(), cpu_s.end()), Median(walked_m),
               Median(mission_s), static_cast<unsigned long long>(sim_options.seed), pick_seed);
+  std::printf("starts whose log ends within 1 m of walking: %d; within 3 m (min_travel_m): %d\n", short_1m, short_3m);
   return 0;
 }

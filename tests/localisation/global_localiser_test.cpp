@@ -41,6 +41,30 @@ TEST(GlobalLocaliser, FindsUnknownPosesOnThePartialOfficePlan) {
   }
 }
 
+// Three scans of the plan itself along the corridor, merged into the latest body frame: the door
+// frames over 1 m of walk pin the pose along the corridor, from a guess 0.4 m off along it.
+TEST(GlobalLocaliser, FitMergedPinsAPoseAlongTheCorridor) {
+  const sim::Scenario office = testing::OfficeScenario();
+  const VirtualScanner plan_scanner(*office.apriori);
+  const GlobalLocaliser localiser(*office.apriori);
+  const geometry::Pose2 latest{25.0, 14.0, 0.0};
+  scan_matching::Points2 merged;
+  for (const double back_m : {1.0, 0.5, 0.0}) {
+    const geometry::Pose2 pose{latest.x_m - back_m, latest.y_m, latest.theta_rad};
+    const auto scan = plan_scanner.Scan(pose, testing::OfficeLaser(), 361);
+    const geometry::Pose2 latest_from_pose = geometry::Compose(geometry::Inverse(latest), pose);
+    for (const Eigen::Vector2d& p : scan_matching::ScanToPoints(scan, 0.1)) {
+      merged.push_back(geometry::TransformPoint(latest_from_pose, p));
+    }
+  }
+  const PoseHypothesis fitted = localiser.FitMerged(merged, {latest.x_m + 0.4, latest.y_m + 0.05, 1.0 * kDeg});
+  EXPECT_NEAR(fitted.map_from_body.x_m, latest.x_m, 0.03);
+  EXPECT_NEAR(fitted.map_from_body.y_m, latest.y_m, 0.03);
+  EXPECT_NEAR(geometry::NormalizeAngle(fitted.map_from_body.theta_rad - latest.theta_rad), 0.0, 0.3 * kDeg);
+  EXPECT_GT(fitted.score, 0.9);
+  EXPECT_EQ(localiser.FitMerged({}, latest).score, 0.0);  // nothing to fit: the guess, score 0
+}
+
 TEST(GlobalLocaliser, EmptyScanGivesNoHypothesis) {
   const GlobalLocaliser localiser({{{0.0, 0.0}, {5.0, 0.0}}});
   EXPECT_TRUE(localiser.Localise(scan_matching::Points2{}).hypotheses.empty());

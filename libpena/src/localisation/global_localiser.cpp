@@ -32,6 +32,7 @@ void Validate(const GlobalLocaliserOptions& o) {
                                 o.coarse);
   scan_matching::ValidateWindow(o.fine_window, o.fine);
   scan_matching::ValidateWindow(o.verify_window, o.fine);
+  scan_matching::ValidateWindow(o.final_window, o.fine);
 }
 
 // Best first by agreement, duplicates of a better hypothesis dropped, at most `keep`.
@@ -192,6 +193,13 @@ PoseHypothesis GlobalLocaliser::Verify(const sensors::LaserScan& scan,
   PoseHypothesis refined = impl_->Refine(points, guess, impl_->options.verify_window);
   refined.agreement = impl_->Agreement(scan, refined.map_from_body).fraction();
   return refined;
+}
+
+PoseHypothesis GlobalLocaliser::FitMerged(const scan_matching::Points2& points_body,
+                                          const geometry::Pose2& map_from_body_guess) const {
+  PoseHypothesis guess{map_from_body_guess, 0.0, 0, 0.0, 0.0};
+  if (points_body.empty() || impl_->reference.empty()) return guess;
+  return impl_->Refine(points_body, guess, impl_->options.final_window);
 }
 
 GlobalResult GlobalLocaliser::Localise(const sensors::LaserScan& scan, int max_hypotheses) const {

@@ -27,6 +27,7 @@ void Validate(const GlobalTrackerOptions& o) {
           o.drop_margin_beams);
   Require(o.search_every_m > 0.0, "search_every_m", "> 0 m", o.search_every_m);
   Require(o.through_weight >= 0.0, "through_weight", ">= 0", o.through_weight);
+  Require(o.final_keyframes >= 0, "final_keyframes", ">= 0", o.final_keyframes);
 }
 
 bool ByEvidence(const Track& a, const Track& b) { return a.evidence_beams > b.evidence_beams; }
@@ -99,10 +100,24 @@ std::optional<PoseHypothesis> GlobalTracker::Decide() const {
     return std::nullopt;
   }
   PoseHypothesis winner;
-  winner.map_from_body = leader.map_from_body;
+  winner.map_from_body = options_.final_keyframes > 0 ? FinalFit(leader) : leader.map_from_body;
   winner.agreement = leader.agreement;
   winner.score = leader.agreement;
   return winner;
+}
+
+// The latest keyframes' points in the latest body frame (placed by the odometry), fitted at once.
+geometry::Pose2 GlobalTracker::FinalFit(const Track& winner) const {
+  const geometry::Pose2 body_from_odom = geometry::Inverse(keyframes_.back().odom_from_body);
+  scan_matching::Points2 merged;
+  const std::size_t n = std::min(keyframes_.size(), static_cast<std::size_t>(options_.final_keyframes));
+  for (std::size_t i = keyframes_.size() - n; i < keyframes_.size(); ++i) {
+    const geometry::Pose2 latest_from_k = geometry::Compose(body_from_odom, keyframes_[i].odom_from_body);
+    for (const Eigen::Vector2d& p : scan_matching::ScanToPoints(keyframes_[i].scan, 0.1)) {
+      merged.push_back(geometry::TransformPoint(latest_from_k, p));
+    }
+  }
+  return localiser_->FitMerged(merged, winner.map_from_body).map_from_body;
 }
 
 GlobalResult GlobalTracker::Ranked() const {

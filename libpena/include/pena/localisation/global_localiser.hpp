@@ -42,6 +42,10 @@ struct GlobalLocaliserOptions {
   // with the walk to keep fitting; the odometry between keyframes is good to a few cm.
   scan_matching::SearchWindow verify_window{0.12, 0.12, 0.02617993877991494, 0.02,
                                             0.004363323129985824};  // 12 cm x 12 cm x 1.5 deg
+  // Final fit of a decided hypothesis on several keyframes' points at once (GlobalTracker's
+  // final_keyframes): wide along a corridor, where one keyframe's fit slides.
+  scan_matching::SearchWindow final_window{1.2, 1.2, 0.05235987755982988, 0.04,
+                                           0.004363323129985824};  // 1.2 m x 1.2 m x 3 deg
   double max_range_m = 30.0;   // scan points farther than this are dropped
   double min_range_m = 0.1;    // closer returns are the carrier's body
   double agreement_tolerance_m = 0.3;  // a beam agrees when real and virtual range differ less
@@ -90,6 +94,10 @@ class GlobalLocaliser {
   // One hypothesis checked at a new scan: fine match in verify_window around `map_from_body_guess`,
   // then beam agreement at the refined pose.
   PoseHypothesis Verify(const sensors::LaserScan& scan, const geometry::Pose2& map_from_body_guess) const;
+
+  // Fine match of points merged from several scans (body frame of the latest) in final_window
+  // around `map_from_body_guess`; the score is eq. 2 with the fine threshold.
+  PoseHypothesis FitMerged(const scan_matching::Points2& points_body, const geometry::Pose2& map_from_body_guess) const;
 
   // The real scan against the virtual scan from `map_from_body` (laser at the body origin).
   BeamAgreement Agreement(const sensors::LaserScan& scan, const geometry::Pose2& map_from_body) const;

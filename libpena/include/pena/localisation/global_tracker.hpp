@@ -34,6 +34,12 @@ struct GlobalTrackerOptions {
   // agreeing one. 0: a plan that lacks a passage (office: the west wing, the annex) would
   // otherwise push the true place away from its mistakes onto a look-alike 6 m along.
   double through_weight = 0.0;
+  // Final fit (0 = off): the winner is re-fitted on the points of the latest this many kept
+  // keyframes at once, placed by the odometry (GlobalLocaliser::FitMerged). One keyframe in a
+  // corridor pins the pose across it only; door frames spread over a few metres also pin it
+  // along. Off: on office it turned a 0.41 m along-corridor anchor into 0.26 m but pulled a
+  // 0.01 m one 0.14-0.17 m towards the east wall drawn 0.3 m off (docs/localisation.md).
+  int final_keyframes = 0;
   double drop_margin_beams = 400.0;  // hypotheses trailing the leader by more are dropped
   double search_every_m = 2.0;       // a new whole-plan search after this many metres walked
 };
@@ -76,6 +82,7 @@ class GlobalTracker {
   void Score();
   void Prune();
   std::optional<PoseHypothesis> Decide() const;
+  geometry::Pose2 FinalFit(const Track& winner) const;
   GlobalResult Ranked() const;
 
   const GlobalLocaliser* localiser_;
