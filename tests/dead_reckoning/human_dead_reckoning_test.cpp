@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 
 namespace pena::dead_reckoning {
 namespace {
@@ -19,11 +20,12 @@ PosePrior StartAt(double x, double y, double theta) {
 }
 
 // Walks a 10 m square counter-clockwise: 0.7 m strides at 2 Hz with 5% length noise, gyro at
-// 100 Hz, compass at 10 Hz; 90 deg turns at 90 deg/s on the spot.
-void WalkSquare(HumanDeadReckoning& dead_reckoning, std::mt19937& rng) {
+// 100 Hz, compass at 10 Hz; 90 deg turns at 90 deg/s on the spot. Returns the last stride's stamp.
+double WalkSquare(HumanDeadReckoning& dead_reckoning, std::mt19937& rng) {
   std::normal_distribution<double> stride_noise(0.0, 0.05);
   std::normal_distribution<double> compass_noise(0.0, 2.0 * kDeg);
   double t = 0.0;
+  double last_stride_s = 0.0;
   double heading = 0.0;
   for (int side = 0; side < 4; ++side) {
     for (int step = 0; step < 14; ++step) {  // 14 x 0.714 m = 10 m
@@ -33,6 +35,7 @@ void WalkSquare(HumanDeadReckoning& dead_reckoning, std::mt19937& rng) {
         if (tick % 10 == 0) dead_reckoning.Add(sensors::CompassSample{t, heading + compass_noise(rng)});
       }
       dead_reckoning.Add(sensors::StrideSample{t, (10.0 / 14.0) * (1.0 + stride_noise(rng))});
+      last_stride_s = t;
     }
     for (int tick = 0; tick < 100; ++tick) {
       t += 0.01;
@@ -40,13 +43,16 @@ void WalkSquare(HumanDeadReckoning& dead_reckoning, std::mt19937& rng) {
       dead_reckoning.Add(sensors::GyroSample{t, 0.5 * std::numbers::pi});
     }
   }
+  return last_stride_s;
 }
 
 TEST(HumanDeadReckoning, ClosesASquareWithinStrideError) {
   std::mt19937 rng(3);
   HumanDeadReckoning dead_reckoning({}, StartAt(0.0, 0.0, 0.0));
-  WalkSquare(dead_reckoning, rng);
-  const PosePrior end = dead_reckoning.PriorAt(100.0);
+  // At the last stride report: during the turn on the spot that follows, the position is carried
+  // a stride forward at the last pace (the SiLMU cannot tell a stop from a slow stride).
+  const double last_stride_s = WalkSquare(dead_reckoning, rng);
+  const PosePrior end = dead_reckoning.PriorAt(last_stride_s);
   // 40 m walked with 5% per-stride noise: a few tens of centimetres at most.
   EXPECT_LT(std::hypot(end.world_from_body.x_m, end.world_from_body.y_m), 0.6);
   EXPECT_GT(end.covariance(0, 0), 1e-3);  // uncertainty grew with the walk
@@ -83,6 +89,152 @@ TEST(HumanDeadReckoning, ResetMovesTheEstimate) {
   const PosePrior prior = dead_reckoning.PriorAt(0.5);
   EXPECT_NEAR(prior.world_from_body.x_m, 5.0, 1e-9);
   EXPECT_NEAR(prior.world_from_body.y_m, 0.0, 1e-9);
+}
+
+// Strides of 0.6 m every 0.5 s along +x (1.2 m/s); the SiLMU reports each when it ends.
+void WalkStraight(HumanDeadReckoning& dead_reckoning, int strides) {
+  for (int i = 1; i <= strides; ++i) {
+    for (int tick = 1; tick <= 50; ++tick) dead_reckoning.Add(sensors::GyroSample{(i - 1) * 0.5 + tick * 0.01, 0.0});
+    dead_reckoning.Add(sensors::StrideSample{i * 0.5, 0.6});
+  }
+}
+
+// The extrapolation between stride reports switched on (off by default).
+HumanDeadReckoningOptions Carried() {
+  HumanDeadReckoningOptions options;
+  options.max_stride_period_s = 1.5;
+  return options;
+}
+
+TEST(HumanDeadReckoning, CarriesThePositionForwardBetweenStrideReports) {
+  HumanDeadReckoning dead_reckoning(Carried(), StartAt(0.0, 0.0, 0.0));
+  WalkStraight(dead_reckoning, 4);  // at 2.4 m at t = 2.0 s
+  // Mid-stride the walker is half a stride on, not still at the last report (the saw tooth).
+  EXPECT_NEAR(dead_reckoning.PriorAt(2.25).world_from_body.x_m, 2.7, 1e-9);
+  // At most one stride ahead, however long the next report takes.
+  EXPECT_NEAR(dead_reckoning.PriorAt(4.0).world_from_body.x_m, 3.0, 1e-9);
+  // The next report replaces the extrapolation: no stride counted twice.
+  dead_reckoning.Add(sensors::StrideSample{2.5, 0.5});
+  EXPECT_NEAR(dead_reckoning.PriorAt(2.5).world_from_body.x_m, 2.9, 1e-9);
+}
+
+TEST(HumanDeadReckoning, ExtrapolationIsOffByDefaultAndNeedsAKnownPace) {
+  HumanDeadReckoningOptions options;
+  EXPECT_EQ(options.max_stride_period_s, 0.0);
+  HumanDeadReckoning off(options, StartAt(0.0, 0.0, 0.0));
+  WalkStraight(off, 4);
+  EXPECT_NEAR(off.PriorAt(2.25).world_from_body.x_m, 2.4, 1e-9);
+  // The first stride after standing 5 s gives no pace: nothing is extrapolated after it.
+  HumanDeadReckoning standing(Carried(), StartAt(0.0, 0.0, 0.0));
+  standing.Add(sensors::StrideSample{5.0, 0.6});
+  EXPECT_NEAR(standing.PriorAt(5.25).world_from_body.x_m, 0.6, 1e-9);
+  options.max_stride_period_s = -1.0;
+  EXPECT_THROW(HumanDeadReckoning(options, StartAt(0.0, 0.0, 0.0)), std::invalid_argument);
+}
+
+TEST(HumanDeadReckoning, ResetMidStrideDoesNotCountTheStrideTwice) {
+  HumanDeadReckoning dead_reckoning(Carried(), StartAt(0.0, 0.0, 0.0));
+  WalkStraight(dead_reckoning, 4);
+  PosePrior corrected = dead_reckoning.PriorAt(2.25);  // 2.7 m, half a stride on
+  corrected.world_from_body.x_m = 2.8;                 // scan matching says 10 cm further
+  dead_reckoning.Reset(corrected);
+  EXPECT_NEAR(dead_reckoning.PriorAt(2.25).world_from_body.x_m, 2.8, 1e-9);
+  dead_reckoning.Add(sensors::StrideSample{2.5, 0.6});
+  EXPECT_NEAR(dead_reckoning.PriorAt(2.5).world_from_body.x_m, 3.1, 1e-9);
+}
+
+// A correction that also turns the heading: the prior at the correction's stamp is the correction,
+// and the stride in progress turns with it.
+TEST(HumanDeadReckoning, ResetMidStrideWithAHeadingCorrectionHoldsAtItsStamp) {
+  HumanDeadReckoning dead_reckoning(Carried(), StartAt(0.0, 0.0, 0.0));
+  WalkStraight(dead_reckoning, 4);
+  PosePrior corrected = dead_reckoning.PriorAt(2.25);
+  corrected.world_from_body = {2.8, 0.1, 0.2};
+  dead_reckoning.Reset(corrected);
+  const PosePrior now = dead_reckoning.PriorAt(2.25);
+  EXPECT_NEAR(now.world_from_body.x_m, 2.8, 1e-9);
+  EXPECT_NEAR(now.world_from_body.y_m, 0.1, 1e-9);
+  EXPECT_NEAR(now.world_from_body.theta_rad, 0.2, 1e-9);
+  // The report ends the 0.6 m stride, half of it (0.3 m) still to go along 0.2 rad.
+  dead_reckoning.Add(sensors::StrideSample{2.5, 0.6});
+  const PosePrior after = dead_reckoning.PriorAt(2.5);
+  EXPECT_NEAR(after.world_from_body.x_m, 2.8 + 0.3 * std::cos(0.2), 1e-9);
+  EXPECT_NEAR(after.world_from_body.y_m, 0.1 + 0.3 * std::sin(0.2), 1e-9);
+}
+
+// Office seed 2's regression (RMSE 0.35 -> 0.94 m with the first version): the walker stops
+// mid-stride and turns on the spot. The stride in progress must stay where it was heading when
+// the next report became due, not swing round with the body.
+TEST(HumanDeadReckoning, TurningOnTheSpotAfterStoppingDoesNotSwingTheStride) {
+  HumanDeadReckoning dead_reckoning(Carried(), StartAt(0.0, 0.0, 0.0));
+  WalkStraight(dead_reckoning, 4);  // at 2.4 m at t = 2.0 s, the next report due at 2.5 s
+  for (int tick = 1; tick <= 200; ++tick) {
+    // Still until 2.6 s, then a 180 deg turn at 180 deg/s until 3.6 s; no stride is reported.
+    const bool turning = tick > 60 && tick <= 160;
+    dead_reckoning.Add(sensors::GyroSample{2.0 + tick * 0.01, turning ? std::numbers::pi : 0.0});
+  }
+  const PosePrior turned = dead_reckoning.PriorAt(4.0);
+  EXPECT_NEAR(std::abs(turned.world_from_body.theta_rad), std::numbers::pi, 1e-6);
+  // One stride ahead along +x, as before the turn (the first version: 2.4 - 0.6 = 1.8 m).
+  EXPECT_NEAR(turned.world_from_body.x_m, 3.0, 1e-9);
+  EXPECT_NEAR(turned.world_from_body.y_m, 0.0, 1e-9);
+}
+
+// Turning while walking: the stride in progress is the chord of the arc, along the mean heading.
+TEST(HumanDeadReckoning, TheStrideInProgressFollowsTheChordOfATurn) {
+  HumanDeadReckoning dead_reckoning(Carried(), StartAt(0.0, 0.0, 0.0));
+  WalkStraight(dead_reckoning, 4);
+  for (int tick = 1; tick <= 25; ++tick) {
+    dead_reckoning.Add(sensors::GyroSample{2.0 + tick * 0.01, 0.4});  // 0.1 rad by 2.25 s
+  }
+  const PosePrior prior = dead_reckoning.PriorAt(2.25);
+  EXPECT_NEAR(prior.world_from_body.theta_rad, 0.1, 1e-9);
+  EXPECT_NEAR(prior.world_from_body.x_m, 2.4 + 0.3 * std::cos(0.05), 1e-9);
+  EXPECT_NEAR(prior.world_from_body.y_m, 0.3 * std::sin(0.05), 1e-9);
+  // Half a stride extrapolated: its sigma is a quarter stride along the chord.
+  const Eigen::Vector2d along(std::cos(0.05), std::sin(0.05));
+  const Eigen::Matrix2d added = prior.covariance.topLeftCorner<2, 2>();
+  EXPECT_GT(along.dot(added * along), 0.15 * 0.15);
+}
+
+TEST(HumanDeadReckoning, LearnsTheStrideScaleFromPositionFixes) {
+  HumanDeadReckoningOptions options;
+  options.stride_calibration.enabled = true;
+  HumanDeadReckoning dead_reckoning(options, StartAt(0.0, 0.0, 0.0));
+  // The sensor reads 0.6 m for strides of 0.63 m (5 % short); fixes every stride, all matched.
+  for (int i = 1; i <= 40; ++i) {
+    for (int tick = 1; tick <= 50; ++tick) dead_reckoning.Add(sensors::GyroSample{(i - 1) * 0.5 + tick * 0.01, 0.0});
+    dead_reckoning.Add(sensors::StrideSample{i * 0.5, 0.6});
+    dead_reckoning.AddPositionFix(i * 0.5, {0.63 * i, 0.0}, true);
+  }
+  // Nine samples of four strides (2.4 m raw, the first fix only anchors) against the prior 1 of
+  // weight 8 m^2: (1.05 * 9 * 2.4^2 + 8) / (9 * 2.4^2 + 8), most of the way to 1.05.
+  const double walk_m2 = 9 * 2.4 * 2.4;
+  EXPECT_NEAR(dead_reckoning.stride_scale(), (1.05 * walk_m2 + 8.0) / (walk_m2 + 8.0), 1e-9);
+  EXPECT_GT(dead_reckoning.stride_scale(), 1.04);
+  const double before = dead_reckoning.PriorAt(20.0).world_from_body.x_m;
+  dead_reckoning.Add(sensors::StrideSample{20.5, 0.6});
+  EXPECT_NEAR(dead_reckoning.PriorAt(20.5).world_from_body.x_m - before,
+              0.6 * dead_reckoning.stride_scale(), 1e-9);
+}
+
+TEST(HumanDeadReckoning, BrokenFixesAndTheDefaultLeaveTheScaleAlone) {
+  HumanDeadReckoningOptions options;
+  options.stride_calibration.enabled = true;
+  HumanDeadReckoning broken(options, StartAt(0.0, 0.0, 0.0));
+  HumanDeadReckoning by_default({}, StartAt(0.0, 0.0, 0.0));
+  for (int i = 1; i <= 40; ++i) {
+    broken.Add(sensors::StrideSample{i * 0.5, 0.6});
+    by_default.Add(sensors::StrideSample{i * 0.5, 0.6});
+    // Every fix follows an unfixed stretch (a corridor): no 2 m stretch is fixed throughout.
+    broken.AddPositionFix(i * 0.5, {0.8 * i, 0.0}, false);
+    by_default.AddPositionFix(i * 0.5, {0.8 * i, 0.0}, true);
+  }
+  EXPECT_DOUBLE_EQ(broken.stride_scale(), 1.0);
+  EXPECT_DOUBLE_EQ(by_default.stride_scale(), 1.0);
+  StrideCalibrationOptions bad;
+  bad.max_correction = 1.0;
+  EXPECT_THROW(StrideCalibration{bad}, std::invalid_argument);
 }
 
 }  // namespace

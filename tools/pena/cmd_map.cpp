@@ -95,7 +95,7 @@ class PoseFeeder {
     const double stamp_s = read_ahead.empty() ? 0.0 : sensors::StampOf(read_ahead.front());
     const sensors::EntityKind kind =
         source_.description().kind.value_or(sensors::EntityKind::kRobot);
-    chain_.emplace(odometry::LaserOdometryOptions{}, kind, StartPoseOf(read_ahead, source_).world_from_body,
+    chain_.emplace(OdometryOptionsOf(args_), kind, StartPoseOf(read_ahead, source_).world_from_body,
                    stamp_s);
   }
 
@@ -237,6 +237,8 @@ void AddMapCommand(CLI::App& app) {
   command->add_flag("--ignore-logged-poses", args->ignore_logged,
                     "Run the odometry (and SLAM) even when the log's scans carry poses (e.g. the "
                     "Freiburg logs' FLASER poses)");
+  command->add_option("--set", args->odometry_settings,
+                      "NAME=VALUE: change an odometry option, as `pena odometry --set` (repeatable)");
   command->add_flag("--quiet", args->quiet, "No progress line on stderr");
   command->callback([args] { map::RunMap(*args); });
 }

@@ -15,6 +15,7 @@
 #include "pena/io/log_source.hpp"
 #include "pena/line_map/line_map.hpp"
 #include "pena/line_map/line_segment.hpp"
+#include "pena/odometry/laser_odometry.hpp"
 #include "pena/slam/keyframe_slam.hpp"
 
 namespace pena::cli::map {
@@ -31,8 +32,12 @@ struct MapArgs {
   bool slam = true;
   bool ignore_logged = false;  // run the odometry (+ SLAM) even when the scans carry poses  // without a trajectory and logged poses: odometry + keyframe SLAM
   bool quiet = false;
+  std::vector<std::string> odometry_settings;  // --set NAME=VALUE, as `pena odometry --set`
   io::ReadOptions read;
 };
+
+// The odometry options of the chain that gives the poses (defaults changed by --set).
+odometry::LaserOdometryOptions OdometryOptionsOf(const MapArgs& args);
 
 // What the pass over the log produced.
 struct MapRun {

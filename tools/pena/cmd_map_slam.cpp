@@ -7,10 +7,17 @@
 
 #include "cli_support.hpp"
 #include "cmd_map.hpp"
+#include "odometry_settings.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/odometry/laser_odometry.hpp"
 
 namespace pena::cli::map {
+
+odometry::LaserOdometryOptions OdometryOptionsOf(const MapArgs& args) {
+  odometry::LaserOdometryOptions options;
+  ApplyOdometrySettings(args.odometry_settings, options);
+  return options;
+}
 
 std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run) {
   const auto started = Clock::now();
@@ -24,7 +31,7 @@ std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run
     }
   }
   const double stamp_s = read_ahead.empty() ? 0.0 : sensors::StampOf(read_ahead.front());
-  odometry::LaserOdometry chain(odometry::LaserOdometryOptions{},
+  odometry::LaserOdometry chain(OdometryOptionsOf(args),
                                 source->description().kind.value_or(sensors::EntityKind::kRobot),
                                 StartPoseOf(read_ahead, *source).world_from_body, stamp_s);
   slam::KeyframeSlam slam;

@@ -16,6 +16,8 @@ std::map<std::string, double*> SettableOptions(odometry::LaserOdometryOptions& o
           {"keyframe_angle_rad", &o.keyframe_angle_rad},
           {"keyframe_min_score", &o.keyframe_min_score},
           {"degenerate_eigen_ratio", &o.degenerate_eigen_ratio},
+          {"degenerate_slide_ratio", &o.degenerate_slide_ratio},
+          {"degenerate_max_slide_m", &o.degenerate_max_slide_m},
           {"reference_fill_spacing_m", &o.reference_fill_spacing_m},
           {"reference_fill_max_gap_m", &o.reference_fill_max_gap_m},
           {"reference_fill_max_gap_beams", &o.reference_fill_max_gap_beams},
@@ -36,7 +38,14 @@ std::map<std::string, double*> SettableOptions(odometry::LaserOdometryOptions& o
           {"tilt_laser_height_m", &o.tilt_laser_height_m},
           {"tilt_ceiling_height_m", &o.tilt_ceiling_height_m},
           {"stale_changed_m", &o.stale_changed_m},
-          {"matcher.threshold_m", &o.matcher.threshold_m}};
+          {"matcher.threshold_m", &o.matcher.threshold_m},
+          {"dead_reckoning.max_stride_period_s", &o.dead_reckoning.max_stride_period_s},
+          {"dead_reckoning.stride_calibration.interval_m",
+           &o.dead_reckoning.stride_calibration.interval_m},
+          {"dead_reckoning.stride_calibration.prior_weight_m2",
+           &o.dead_reckoning.stride_calibration.prior_weight_m2},
+          {"dead_reckoning.stride_calibration.max_correction",
+           &o.dead_reckoning.stride_calibration.max_correction}};
 }
 
 }  // namespace
@@ -53,10 +62,14 @@ void ApplyOdometrySettings(const std::vector<std::string>& settings,
                                             {"stale_history_scans", &o.stale_history_scans},
                                             {"timing_burst_window_scans",
                                              &o.timing_burst_window_scans}};
+  const std::map<std::string, bool*> flags = {
+      {"dead_reckoning.stride_calibration.enabled", &o.dead_reckoning.stride_calibration.enabled}};
   for (const std::string& setting : settings) {
     const auto [name, value] = ParseSetting(setting);
     if (const auto d = doubles.find(name); d != doubles.end()) {
       *d->second = value;
+    } else if (const auto f = flags.find(name); f != flags.end()) {
+      *f->second = value != 0.0;  // 0: off, anything else: on
     } else if (const auto i = ints.find(name); i != ints.end()) {
       *i->second = static_cast<int>(std::lround(value));
     } else {

@@ -1,5 +1,6 @@
 #include "pena/dead_reckoning/human_dead_reckoning.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -12,11 +13,16 @@ HumanDeadReckoning::HumanDeadReckoning(const HumanDeadReckoningOptions& options,
       heading_(options.heading, start.world_from_body.theta_rad, start.stamp_s),
       position_m_(start.world_from_body.x_m, start.world_from_body.y_m),
       position_covariance_(start.covariance.topLeftCorner<2, 2>()),
-      last_stride_stamp_s_(start.stamp_s) {
+      last_stride_stamp_s_(start.stamp_s),
+      calibration_(options.stride_calibration) {
   if (!(options.stride_sigma_fraction >= 0.0 && options.stride_sigma_fraction < 1.0)) {
     throw std::invalid_argument(
         "human_dead_reckoning.stride_sigma_fraction must be in [0, 1), got " +
         std::to_string(options.stride_sigma_fraction));
+  }
+  if (!(options.max_stride_period_s >= 0.0)) {
+    throw std::invalid_argument("human_dead_reckoning.max_stride_period_s must be >= 0 s, got " +
+                                std::to_string(options.max_stride_period_s));
   }
   if (!(options.max_stride_m > 0.0)) {
     throw std::invalid_argument("human_dead_reckoning.max_stride_m must be > 0 m, got " +
@@ -27,14 +33,16 @@ HumanDeadReckoning::HumanDeadReckoning(const HumanDeadReckoningOptions& options,
 DeadReckoningEvent HumanDeadReckoning::Add(const sensors::SensorRecord& record) {
   if (const auto* gyro = std::get_if<sensors::GyroSample>(&record)) {
     const HeadingEvent event = heading_.Predict(*gyro);
+    NoteStrideDue(gyro->stamp_s);
     if (event == HeadingEvent::kGyroGap) return Count(DeadReckoningEvent::kGyroGap);
     if (event == HeadingEvent::kOutOfOrder) return Count(DeadReckoningEvent::kOutOfOrder);
     return DeadReckoningEvent::kNone;
   }
   if (const auto* compass = std::get_if<sensors::CompassSample>(&record)) {
-    return heading_.Update(*compass) == HeadingEvent::kNone
-               ? DeadReckoningEvent::kNone
-               : Count(DeadReckoningEvent::kCompassRejected);
+    const HeadingEvent event = heading_.Update(*compass);
+    NoteStrideDue(compass->stamp_s);
+    return event == HeadingEvent::kNone ? DeadReckoningEvent::kNone
+                                        : Count(DeadReckoningEvent::kCompassRejected);
   }
   if (const auto* stride = std::get_if<sensors::StrideSample>(&record)) return AddStride(*stride);
   return DeadReckoningEvent::kIgnored;
@@ -45,15 +53,21 @@ DeadReckoningEvent HumanDeadReckoning::AddStride(const sensors::StrideSample& st
   if (!(stride.length_m >= 0.0 && stride.length_m <= options_.max_stride_m)) {
     return Count(DeadReckoningEvent::kStrideRejected);
   }
+  last_stride_period_s_ = stride.stamp_s - last_stride_stamp_s_;
   last_stride_stamp_s_ = stride.stamp_s;
+  last_stride_m_ = stride.length_m;
   // The SiLMU measures length, not direction: the step is taken along the current heading. The
   // position covariance grows by J Sigma J^T with the stride and heading uncertainties.
   const double heading = heading_.HeadingAt(stride.stamp_s);
+  last_stride_heading_rad_ = heading;
+  due_heading_rad_.reset();
   const Eigen::Vector2d direction(std::cos(heading), std::sin(heading));
   const Eigen::Vector2d normal(-direction.y(), direction.x());
-  position_m_ += stride.length_m * direction;
-  const double length_sigma_m = options_.stride_sigma_fraction * stride.length_m;
-  const double lateral_sigma_m = stride.length_m * heading_.heading_sigma_rad();
+  const double length_m = calibration_.scale() * stride.length_m;
+  position_m_ += length_m * direction;
+  raw_walk_m_ += stride.length_m * direction;
+  const double length_sigma_m = options_.stride_sigma_fraction * length_m;
+  const double lateral_sigma_m = length_m * heading_.heading_sigma_rad();
   position_covariance_ += length_sigma_m * length_sigma_m * direction * direction.transpose() +
                           lateral_sigma_m * lateral_sigma_m * normal * normal.transpose();
   return DeadReckoningEvent::kNone;
@@ -70,19 +84,65 @@ DeadReckoningEvent HumanDeadReckoning::Count(DeadReckoningEvent event) {
   return event;
 }
 
+bool HumanDeadReckoning::PaceKnown() const {
+  return last_stride_period_s_ > 0.0 && last_stride_period_s_ <= options_.max_stride_period_s;
+}
+
+void HumanDeadReckoning::NoteStrideDue(double stamp_s) {
+  if (PaceKnown() && !due_heading_rad_ &&
+      stamp_s >= last_stride_stamp_s_ + last_stride_period_s_) {
+    due_heading_rad_ = heading_.HeadingAt(stamp_s);
+  }
+}
+
+Eigen::Vector2d HumanDeadReckoning::AheadRawM(double stamp_s) const {
+  if (!PaceKnown()) return Eigen::Vector2d::Zero();
+  const double since_s = stamp_s - last_stride_stamp_s_;
+  if (!(since_s > 0.0)) return Eigen::Vector2d::Zero();
+  const double fraction = std::min(since_s / last_stride_period_s_, 1.0);
+  // The stride in progress runs from the last report's heading to the heading now, or, once the
+  // next report is overdue (the walker stopped, or slowed), to the heading when it was due: a
+  // turn on the spot after stopping must not swing the stride round with the body (an earlier
+  // version took the heading now, which moved the prior by up to two strides during such turns).
+  const double end_heading =
+      since_s < last_stride_period_s_ ? heading_.HeadingAt(stamp_s)
+                                      : due_heading_rad_.value_or(heading_.HeadingAt(stamp_s));
+  // Chord of a steady turn: along the mean of the start and end headings.
+  const double heading =
+      last_stride_heading_rad_ + 0.5 * geometry::NormalizeAngle(end_heading - last_stride_heading_rad_);
+  return last_stride_m_ * fraction * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+}
+
 PosePrior HumanDeadReckoning::PriorAt(double stamp_s) const {
   PosePrior prior;
   prior.stamp_s = stamp_s;
-  prior.world_from_body = {position_m_.x(), position_m_.y(), heading_.HeadingAt(stamp_s)};
-  prior.covariance.topLeftCorner<2, 2>() = position_covariance_;
+  const double heading = heading_.HeadingAt(stamp_s);
+  const Eigen::Vector2d ahead_m = calibration_.scale() * AheadRawM(stamp_s);
+  const Eigen::Vector2d position = position_m_ + ahead_m;
+  prior.world_from_body = {position.x(), position.y(), heading};
+  // The pace may have changed (or the walker stopped): half the extrapolated distance, 1 sigma.
+  prior.covariance.topLeftCorner<2, 2>() = position_covariance_ + 0.25 * ahead_m * ahead_m.transpose();
   prior.covariance(2, 2) = std::pow(heading_.heading_sigma_rad(), 2);
   return prior;
 }
 
 void HumanDeadReckoning::Reset(const PosePrior& corrected) {
-  position_m_ = {corrected.world_from_body.x_m, corrected.world_from_body.y_m};
-  position_covariance_ = corrected.covariance.topLeftCorner<2, 2>();
+  // The stride in progress keeps its direction relative to the corrected heading.
+  const double turn_rad = geometry::NormalizeAngle(corrected.world_from_body.theta_rad -
+                                                   heading_.HeadingAt(corrected.stamp_s));
+  last_stride_heading_rad_ += turn_rad;
+  if (due_heading_rad_) *due_heading_rad_ += turn_rad;
   heading_.Reset(corrected.world_from_body.theta_rad, std::sqrt(corrected.covariance(2, 2)));
+  // The correction holds at its stamp, extrapolation included: the next stride report replaces
+  // the extrapolated part, so keep the position of the last report that the correction implies.
+  const Eigen::Vector2d ahead_m = calibration_.scale() * AheadRawM(corrected.stamp_s);
+  position_m_ = Eigen::Vector2d(corrected.world_from_body.x_m, corrected.world_from_body.y_m) - ahead_m;
+  position_covariance_ = corrected.covariance.topLeftCorner<2, 2>();
+}
+
+void HumanDeadReckoning::AddPositionFix(double stamp_s, const Eigen::Vector2d& world_position_m,
+                                        bool continuous) {
+  calibration_.AddFix(raw_walk_m_ + AheadRawM(stamp_s), world_position_m, continuous);
 }
 
 }  // namespace pena::dead_reckoning

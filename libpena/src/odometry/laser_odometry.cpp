@@ -103,15 +103,23 @@ scan_matching::Points2 UsablePoints(const sensors::LaserScan& scan, const LaserO
 }
 
 // Degenerate places (a featureless corridor): the matched translation is only trusted across
-// the weak direction of J^T J; along it the prior's component is kept instead of sliding.
-bool KeepPriorAlongWeakDirection(const Eigen::Matrix3d& information, double ratio,
+// the weak direction of J^T J; along it the prior's component is kept instead of sliding. Weakly
+// constrained ones (below slide_ratio) too when the match slid farther than max_slide_m along it:
+// their few along-track points (floor hits moving with the person, one door frame) pulled it.
+bool KeepPriorAlongWeakDirection(const Eigen::Matrix3d& information,
+                                 const LaserOdometryOptions& options,
                                  const geometry::Pose2& prior, geometry::Pose2& pose) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(information.topLeftCorner<2, 2>());
   const double weak = solver.eigenvalues()(0);
   const double strong = solver.eigenvalues()(1);
-  if (!(strong > 0.0) || weak >= ratio * strong) return false;
+  if (!(strong > 0.0)) return false;
   const Eigen::Vector2d direction = solver.eigenvectors().col(0);
   const Eigen::Vector2d offset(prior.x_m - pose.x_m, prior.y_m - pose.y_m);
+  const double slide_m = std::abs(direction.dot(offset));
+  const bool degenerate = weak < options.degenerate_eigen_ratio * strong;
+  const bool slid = weak < options.degenerate_slide_ratio * strong &&
+                    slide_m > options.degenerate_max_slide_m;
+  if (!degenerate && !slid) return false;
   const Eigen::Vector2d shift = direction * direction.dot(offset);
   pose.x_m += shift.x();
   pose.y_m += shift.y();
@@ -177,6 +185,9 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   }
   out.world_from_body = estimate;
   out.covariance = covariance;
+  // Stretches matched in every direction calibrate the stride scale used in corridors.
+  motion.AddPositionFix(scan.stamp_s, estimate,
+                        out.status == MatchStatus::kMatched && !out.gated && !out.stale);
   if (out.stale) {
     // Its pose is the earlier scan's: the next scans go on from the prediction for now.
     estimate = out.world_from_prior;
@@ -275,7 +286,7 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
   }
   estimate = result.reference_from_scan;
   const bool degenerate =
-      KeepPriorAlongWeakDirection(result.information, options.degenerate_eigen_ratio, prior, estimate);
+      KeepPriorAlongWeakDirection(result.information, options, prior, estimate);
   out.status = degenerate ? MatchStatus::kDegenerate : MatchStatus::kMatched;
   ++(degenerate ? counts.degenerate : counts.matched);
   if (out.stale) return;  // where the earlier scan was taken: output, but it anchors nothing

@@ -92,6 +92,17 @@ bool MotionTracker::CompassRejectedWithin(double stamp_s, double window_s) const
   return last_compass_rejected_s_ && stamp_s - *last_compass_rejected_s_ <= window_s;
 }
 
+void MotionTracker::AddPositionFix(double stamp_s, const geometry::Pose2& world_from_body,
+                                   bool fixed) {
+  if (mode_ != MotionPrior::kDeadReckoning) return;
+  if (!fixed) {
+    fix_broken_ = true;
+    return;
+  }
+  dead_reckoning_.AddPositionFix(stamp_s, {world_from_body.x_m, world_from_body.y_m}, !fix_broken_);
+  fix_broken_ = false;
+}
+
 const dead_reckoning::DeadReckoningCounts& MotionTracker::dead_reckoning_counts() const {
   return dead_reckoning_.counts();
 }

@@ -24,6 +24,10 @@ class MotionTracker {
   // the sensor has one (dead reckoning, wheel odometry); nullopt for stride-only and none.
   const std::optional<geometry::Pose2>& last_pose() const { return last_odometry_pose_; }
 
+  // Dead reckoning: the scan's pose, and whether scan matching fixed it in every direction; the
+  // stride scale is calibrated over stretches fixed throughout (HumanDeadReckoning::AddPositionFix).
+  void AddPositionFix(double stamp_s, const geometry::Pose2& world_from_body, bool fixed);
+
   MotionPrior mode() const { return mode_; }
   // The heading filter's standard deviation at the last scan given to TakeIncrement (dead
   // reckoning only: nullopt otherwise).
@@ -43,6 +47,7 @@ class MotionTracker {
   std::optional<sensors::WheelOdometry> previous_wheel_, latest_wheel_;
   double stride_sum_m_ = 0.0;                             // since the previous scan
   std::optional<double> last_compass_rejected_s_;
+  bool fix_broken_ = true;                                // an unfixed scan since the last fix
 };
 
 }  // namespace pena::odometry::internal

@@ -28,6 +28,10 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           "in [0, 1]", o.keyframe_min_score);
   Require(o.degenerate_eigen_ratio >= 0.0 && o.degenerate_eigen_ratio < 1.0,
           "degenerate_eigen_ratio", "in [0, 1)", o.degenerate_eigen_ratio);
+  Require(o.degenerate_slide_ratio >= 0.0 && o.degenerate_slide_ratio < 1.0,
+          "degenerate_slide_ratio", "in [0, 1) (0: off)", o.degenerate_slide_ratio);
+  Require(o.degenerate_max_slide_m > 0.0, "degenerate_max_slide_m", "> 0 m",
+          o.degenerate_max_slide_m);
   Require(o.reference_fill_spacing_m >= 0.0, "reference_fill_spacing_m", ">= 0 m (0: no fill)",
           o.reference_fill_spacing_m);
   Require(o.reference_fill_max_gap_m > 0.0, "reference_fill_max_gap_m", "> 0 m",

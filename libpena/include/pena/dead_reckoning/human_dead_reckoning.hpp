@@ -4,8 +4,10 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <optional>
 
 #include "pena/dead_reckoning/heading_filter.hpp"
+#include "pena/dead_reckoning/stride_calibration.hpp"
 #include "pena/geometry/pose2.hpp"
 #include "pena/sensors/record.hpp"
 
@@ -16,6 +18,15 @@ struct HumanDeadReckoningOptions {
   HeadingFilterOptions heading;
   double stride_sigma_fraction = 0.05;  // stride length error, fraction of the stride (SiLMU ~5%)
   double max_stride_m = 2.0;            // longer strides are sensor faults and are rejected
+  // The SiLMU reports a stride when it ends, so between reports the walker is up to a whole stride
+  // ahead of the last one (a 0-0.55 m saw tooth at 4 Hz scans). Between reports the position is
+  // carried forward at the last stride's pace (its length over the time since the stride before),
+  // at most one stride; the next report replaces the extrapolation. Only when that time is at most
+  // max_stride_period_s (longer: the walker had stopped, the pace is unknown). 0 disables it
+  // (the default: strides move the position at their reports only).
+  double max_stride_period_s = 0.0;
+  // The stride scale learnt from position fixes (AddPositionFix), applied to every stride.
+  StrideCalibrationOptions stride_calibration;
 };
 
 // A pose estimate with its covariance (x_m, y_m, theta_rad), mission frame.
@@ -58,10 +69,26 @@ class HumanDeadReckoning {
   // Replaces the estimate after a correction (scan matching, map localisation, operator).
   void Reset(const PosePrior& corrected);
 
+  // Scan matching fixed the position at stamp_s in every direction. continuous = false when the
+  // position was not fixed all the way since the previous call (a corridor, a failed match).
+  // Calibrates the stride scale (StrideCalibration); the estimate itself is not changed.
+  void AddPositionFix(double stamp_s, const Eigen::Vector2d& world_position_m, bool continuous);
+
+  // The scale applied to the stride sensor's lengths (1 until calibrated).
+  double stride_scale() const { return calibration_.scale(); }
+
   const DeadReckoningCounts& counts() const { return counts_; }
 
  private:
   DeadReckoningEvent AddStride(const sensors::StrideSample& stride);
+  // Whether the last stride gave a pace to extrapolate at (max_stride_period_s).
+  bool PaceKnown() const;
+  // Remembers the heading when the next stride report became due (called with every gyro and
+  // compass sample).
+  void NoteStrideDue(double stamp_s);
+  // World-frame displacement walked since the last stride report, extrapolated at the last
+  // stride's pace, at most one stride (raw: before the stride scale).
+  Eigen::Vector2d AheadRawM(double stamp_s) const;
   DeadReckoningEvent Count(DeadReckoningEvent event);
 
   HumanDeadReckoningOptions options_;
@@ -69,7 +96,13 @@ class HumanDeadReckoning {
   Eigen::Vector2d position_m_;
   Eigen::Matrix2d position_covariance_;
   double last_stride_stamp_s_;
+  double last_stride_m_ = 0.0;         // raw length of the last accepted stride
+  double last_stride_period_s_ = 0.0;  // time from the stride before it (0: none yet)
+  double last_stride_heading_rad_ = 0.0;        // heading at the last stride report
+  std::optional<double> due_heading_rad_;       // heading when the next report became due
   DeadReckoningCounts counts_;
+  StrideCalibration calibration_;
+  Eigen::Vector2d raw_walk_m_ = Eigen::Vector2d::Zero();  // unscaled strides along the heading
 };
 
 }  // namespace pena::dead_reckoning

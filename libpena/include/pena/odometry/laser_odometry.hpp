@@ -80,6 +80,12 @@ struct LaserOdometryOptions {
   // Degenerate places: translation eigenvalue ratio of J^T J below this means a corridor-like
   // direction; that component is taken from the prior.
   double degenerate_eigen_ratio = 0.05;
+  // Weakly constrained places (ratio below degenerate_slide_ratio: a corridor whose only
+  // along-track features are a few door frames, or floor hits across it that move with the
+  // person): a match that slid more than degenerate_max_slide_m along the weak direction away from
+  // the prior is treated as degenerate too. 0 disables. See docs/dead-reckoning.md.
+  double degenerate_slide_ratio = 0.0;
+  double degenerate_max_slide_m = 0.1;
   // Prior-consistency gate (people and robots with a motion sensor): a match that moved the
   // pose farther from the motion prior than the sensor can be wrong by is not trusted at once:
   // the scan is not made a keyframe (a stale or aliased scan must not anchor the next priors). The allowance grows with the motion since the latest keyframe. After
