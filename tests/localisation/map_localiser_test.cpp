@@ -30,6 +30,8 @@ class MapLocaliserTest : public ::testing::Test {
     return {scan, estimate};
   }
 
+  std::vector<double> AlongErrors(const MapLocaliserOptions& options, double jump_at, bool round_at_jump);
+
   sim::Scenario office_;
   VirtualScanner truth_scanner_;
   double stamp_s_ = 0.0;
@@ -154,12 +156,68 @@ TEST_F(MapLocaliserTest, AnOdometryKeyframeOnItsPriorIsSearchedAlongTheCorridor)
   EXPECT_NEAR(plain.Update(scan, estimate)->map_from_body_after.x_m - truth.x_m, 0.5, 0.05);
 }
 
+// Walking east along the office corridor at 1 m/s, one scan a second; the odometry is right except
+// at `jump_at` (x), where its single scan lies 0.4 m ahead along the corridor (a scan matched near
+// its reference keyframe). Returns the error along the corridor of the pose on the plan at every
+// scan. Plan rounds run at the first scan and, with `round_at_jump`, at the jumped one.
+std::vector<double> MapLocaliserTest::AlongErrors(const MapLocaliserOptions& options, double jump_at,
+                                                  bool round_at_jump) {
+  MapLocaliser localiser(options, *office_.apriori, {});
+  std::vector<double> errors;
+  for (double x = 14.46; x < 24.0; x += 1.0) {
+    const geometry::Pose2 truth{x, 14.0, 0.0};
+    const double jump_m = std::abs(x - jump_at) < 0.1 ? 0.4 : 0.0;
+    const bool keyframe = errors.empty() || (round_at_jump && jump_m > 0.0);
+    const auto [scan, estimate] = At(truth, {jump_m, 0.0, 0.0}, keyframe);
+    localiser.Update(scan, estimate);
+    errors.push_back(localiser.map_from_body().x_m - truth.x_m);
+  }
+  return errors;
+}
+
+TEST_F(MapLocaliserTest, WithoutAMotionGateASingleScanJumpIsOutput) {
+  const std::vector<double> errors = AlongErrors({}, 18.46, /*round_at_jump=*/false);
+  ASSERT_EQ(errors.size(), 10u);
+  EXPECT_NEAR(errors[4], 0.4, 1e-9);
+  EXPECT_NEAR(errors[5], 0.0, 1e-9);
+}
+
+TEST_F(MapLocaliserTest, AMotionGateHoldsASingleScanJump) {
+  MapLocaliserOptions gated;
+  gated.motion_gate_m = 0.2;
+  const std::vector<double> errors = AlongErrors(gated, 18.46, /*round_at_jump=*/false);
+  ASSERT_EQ(errors.size(), 10u);
+  for (const double e : errors) EXPECT_NEAR(e, 0.0, 0.02);
+}
+
+// A round at the jumped keyframe next to a door (x 20.46: the plan pins the pose down along the
+// corridor there) corrects that scan; without the gate the correction carries the jump into
+// map_from_odom and every scan after it is 0.4 m behind (office seed 1 at 3.25 s and 152.75 s).
+TEST_F(MapLocaliserTest, ARoundAtAJumpedKeyframeDoesNotCarryTheJumpWithAMotionGate) {
+  MapLocaliserOptions options;  // a window that reaches the jump (0.4 m beyond the default's)
+  options.window.size_x_m = options.window.size_y_m = 1.2;
+  const std::vector<double> plain = AlongErrors(options, 20.46, /*round_at_jump=*/true);
+  ASSERT_EQ(plain.size(), 10u);
+  EXPECT_NEAR(plain[6], 0.0, 0.05);   // the jumped keyframe, corrected
+  EXPECT_NEAR(plain[7], -0.4, 0.05);  // the jump carried
+  MapLocaliserOptions gated = options;
+  gated.motion_gate_m = 0.2;
+  const std::vector<double> errors = AlongErrors(gated, 20.46, /*round_at_jump=*/true);
+  for (const double e : errors) EXPECT_NEAR(e, 0.0, 0.05);
+}
+
 TEST(MapLocaliserOptions, RejectsBadValues) {
   MapLocaliserOptions options;
   options.min_score = 0.0;
   EXPECT_THROW(MapLocaliser(options, {}, {}), std::invalid_argument);
   options = {};
   options.window.step_xy_m = 0.03;  // not a multiple of the 0.02 m grid
+  EXPECT_THROW(MapLocaliser(options, {}, {}), std::invalid_argument);
+  options = {};
+  options.motion_gate_m = -0.1;
+  EXPECT_THROW(MapLocaliser(options, {}, {}), std::invalid_argument);
+  options = {};
+  options.motion_gate_steps = 0;
   EXPECT_THROW(MapLocaliser(options, {}, {}), std::invalid_argument);
 }
 
@@ -221,6 +279,31 @@ TEST(MapLocaliserAlongDrop, AFeaturelessCorridorKeepsTheOdometryEvenOnItsPrior) 
   EXPECT_TRUE(round.degenerate);
   EXPECT_FALSE(round.recast);
   EXPECT_NEAR(along_error_m, 0.2, 0.03);
+}
+
+// A jump the odometry keeps (a keyframe placed wrong, the scans after it matched to it) is followed
+// after motion_gate_hold held scans, or absorbed into map_from_odom with motion_gate_absorb.
+TEST(MapLocaliserMotionGate, AKeptJumpIsFollowedOrAbsorbed) {
+  const std::vector<geometry::Segment2> walls = Corridor(false);
+  const VirtualScanner scanner(walls);
+  for (const bool absorb : {false, true}) {
+    MapLocaliserOptions options;
+    options.motion_gate_m = 0.2;
+    options.motion_gate_absorb = absorb;
+    MapLocaliser localiser(options, walls, {});
+    std::vector<double> errors;
+    for (int k = 0; k < 8; ++k) {
+      const geometry::Pose2 truth{10.0 + 0.25 * k, 1.0, 0.0};
+      odometry::OdometryEstimate estimate;
+      estimate.stamp_s = 0.25 * k;
+      estimate.world_from_body = {truth.x_m + (k >= 4 ? 0.4 : 0.0), truth.y_m, 0.0};
+      localiser.Update(scanner.Scan(truth, testing::OfficeLaser(), 361, estimate.stamp_s), estimate);
+      errors.push_back(localiser.map_from_body().x_m - truth.x_m);
+    }
+    EXPECT_NEAR(errors[4], 0.0, 0.02) << absorb;  // held (motion_gate_hold 1)
+    EXPECT_NEAR(errors[5], absorb ? 0.0 : 0.4, 0.02) << absorb;
+    EXPECT_NEAR(errors[7], absorb ? 0.0 : 0.4, 0.02) << absorb;
+  }
 }
 
 }  // namespace

@@ -76,7 +76,8 @@ std::optional<LocalisedPose> LocalisationChain::Add(const sensors::SensorRecord&
     const bool force = first || out.global.has_value();
     out.correction = impl_->map.Update(scan, out.odometry, force);
   }
-  out.map_from_body = impl_->map.MapFromBody(out.odometry.world_from_body);
+  out.map_from_body = impl_->anchored ? impl_->map.map_from_body()
+                                      : impl_->map.MapFromBody(out.odometry.world_from_body);
   out.status = impl_->map.status();
   out.anchored = impl_->anchored;
   return out;
