@@ -63,7 +63,8 @@ void ApplyOdometrySettings(const std::vector<std::string>& settings,
                                             {"timing_burst_window_scans",
                                              &o.timing_burst_window_scans}};
   const std::map<std::string, bool*> flags = {
-      {"dead_reckoning.stride_calibration.enabled", &o.dead_reckoning.stride_calibration.enabled}};
+      {"dead_reckoning.stride_calibration.enabled", &o.dead_reckoning.stride_calibration.enabled},
+      {"matcher.exact_refine_check", &o.matcher.exact_refine_check}};
   for (const std::string& setting : settings) {
     const auto [name, value] = ParseSetting(setting);
     if (const auto d = doubles.find(name); d != doubles.end()) {

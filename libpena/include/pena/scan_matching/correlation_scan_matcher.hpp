@@ -23,6 +23,11 @@ struct CorrelationMatcherOptions {
   // by the count alone. In clutter, eq. 2 saturates over a wide range of poses and the search
   // then follows the prior; the graded score keeps a single peak. MatchResult::score stays eq. 2.
   bool graded = true;
+  // Off by default (docs/scan-matching.md). The refined pose replaces the grid pose unless it
+  // lowers the graded score. false: that score is read from the hit grid (2 cm cells, so a
+  // sub-cell polish often reads as a loss and the output falls back to the grid pose, up to half
+  // a step off). true: the score is computed from the exact point-to-line distances.
+  bool exact_refine_check = false;
 };
 
 // The searched poses: the prior in the middle, full extents (the paper: 60 cm x 36 cm x 3 deg at

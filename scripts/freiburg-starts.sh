@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Issue 3's figure of merit: each Freiburg log run from its logged start frame and from the two
+# start frames moved by about 1 cm (docs/odometry.md, seventh round: X and Y), scored with
+# `pena eval --relations`; prints the three mean translational relation errors and their mean.
+# One run at a time (a run takes 1-3 min on a loaded 2-core machine).
+#
+#   scripts/freiburg-starts.sh [--build DIR] [--work DIR] [--logs "intel aces mit-csail"]
+#                              [-- extra pena odometry options, e.g. --set local_map_keyframes=16]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build=build
+work=/tmp/pena-freiburg-starts
+logs="intel aces mit-csail"
+extra=()
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --build) build=$2; shift 2 ;;
+    --work) work=$2; shift 2 ;;
+    --logs) logs=$2; shift 2 ;;
+    --) shift; extra=("$@"); break ;;
+    -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
+    *) echo "freiburg-starts: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+pena="$build/tools/pena/pena"
+[[ -x "$pena" ]] || { echo "freiburg-starts: $pena not built" >&2; exit 1; }
+datasets=${PENA_DATASETS:-../shared/datasets}
+
+# The start frames: "" is the logged first odometry pose; X and Y move it by about 1 cm.
+starts() {
+  case "$1" in
+    intel) printf '%s\n' "" "--start=0.01,0,-0.14083" "--start=0,0.01,-0.14083" ;;
+    aces) printf '%s\n' "" "--start=0.01,-0.001,-90" "--start=-0.001,0.023,-90" ;;
+    mit-csail) printf '%s\n' "" "--start=576.547,0.107,-129.21" "--start=576.537,0.117,-129.21" ;;
+    *) echo "freiburg-starts: no start frames for '$1'" >&2; exit 2 ;;
+  esac
+}
+
+for log in $logs; do
+  errors=()
+  frame=0
+  while IFS= read -r start; do
+    out="$work/$log-$frame"
+    mkdir -p "$out"
+    # shellcheck disable=SC2086
+    "$pena" odometry --quiet --log "$datasets/freiburg/$log.clf.gz" --out "$out" $start \
+      "${extra[@]}" >"$out/stdout"
+    errors+=("$("$pena" eval --trajectory "$out/trajectory.tum" \
+      --relations "$datasets/freiburg/$log.relations" |
+      awk '$1 == "translation" && $2 == "[m]" { print $3 }')")
+    frame=$((frame + 1))
+  done < <(starts "$log")
+  mean=$(printf '%s\n' "${errors[@]}" | awk '{ s += $1 } END { printf "%.4f", s / NR }')
+  printf '%-10s logged %s  X %s  Y %s  mean %s m\n' "$log" "${errors[0]}" "${errors[1]}" "${errors[2]}" "$mean"
+done
