@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <set>
 
+#include "crash_report.hpp"
 #include "dds_participant.hpp"
 #include "link_runner.hpp"
 
@@ -156,6 +157,7 @@ int main(int argc, char** argv) {
   options.link.compress = !no_compress;
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
+  pena::services::InstallCrashReport("pena-gateway");
   try {
     std::fputs(pena::gateway::RunGateway(options, g_stop).c_str(), stdout);
   } catch (const std::exception& error) {

@@ -6,6 +6,7 @@
 #include <exception>
 #include <iostream>
 
+#include "crash_report.hpp"
 #include "dds_participant.hpp"
 #include "logging.hpp"
 #include "signals.hpp"
@@ -22,6 +23,7 @@ int RunDaemon(const std::string& name, const std::function<DaemonLogging()>& bui
     return EXIT_FAILURE;
   }
   InstallStopSignals();
+  InstallCrashReport(name);
   try {
     return run();
   } catch (const DdsError& error) {

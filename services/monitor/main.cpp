@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "crash_report.hpp"
 #include "logging.hpp"
 #include "map_digest.hpp"
 #include "monitor_service.hpp"
@@ -48,6 +49,7 @@ int main(int argc, char** argv) {
     return EXIT_FAILURE;
   }
   pena::services::InstallStopSignals();
+  pena::services::InstallCrashReport("pena-monitor");
   try {
     pena::services::MonitorService service(std::move(options));
     const pena::services::MonitorSummary summary = service.Run();

@@ -149,6 +149,25 @@ TEST(EntityProcess, StopsCleanlyOnSigterm) {
   EXPECT_LT(io::ReadTum(out / "trajectory.tum").size(), TestMission().scans);
 }
 
+// A crash leaves a report: the signal and a backtrace on stderr (crash_report.hpp), and the
+// process still dies of the signal, as without the handler.
+TEST(EntityProcess, ACrashWritesTheSignalAndABacktraceAndStillDiesOfIt) {
+  const int domain = testing::TestDomain(24);
+  Listener listener(domain);
+  const std::filesystem::path out = testing::ScratchDir("crash");
+  const pid_t pid = testing::Spawn(EntityArgs(domain, out, 1.0), out / "entity.log");
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(listener.pose_queue.PopFor(std::chrono::seconds(30)).has_value())
+      << testing::ReadFile(out / "entity.log");
+  kill(pid, SIGSEGV);
+  const int code = testing::WaitExit(pid, 20.0);
+  const std::string log = testing::ReadFile(out / "entity.log");
+  EXPECT_EQ(code, 128 + SIGSEGV) << log;
+  EXPECT_NE(log.find("pena-entity: fatal signal Segmentation fault; backtrace"), std::string::npos)
+      << log;
+  EXPECT_NE(log.find("pena-entity(+0x"), std::string::npos) << log;  // frames addr2line resolves
+}
+
 // --record: what the entity received from its sensors is a native mission log that `pena info`
 // and the log readers open, record for record the input; what it sent is beside it.
 TEST(EntityProcess, RecordsItsInputAsANativeLogThatPenaInfoReads) {
