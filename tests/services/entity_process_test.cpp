@@ -132,14 +132,26 @@ TEST(EntityProcess, PublishesPosesAndDeltasThatRebuildItsMap) {
   EXPECT_EQ(io::ReadLineCsv(out / "line_map.csv").size(), snapshot.segments.size());
 }
 
+// pena-entity at rate 1 into `out`, once its first pose reached `listener`; -1 (with a failure
+// naming the log) if it did not start or sent no pose within 30 s.
+pid_t SpawnRunning(Listener& listener, int domain, const std::filesystem::path& out) {
+  const pid_t pid = testing::Spawn(EntityArgs(domain, out, 1.0), out / "entity.log");
+  if (pid <= 0) return -1;
+  if (!listener.pose_queue.PopFor(std::chrono::seconds(30)).has_value()) {
+    ADD_FAILURE() << "no pose within 30 s\n" << testing::ReadFile(out / "entity.log");
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+    return -1;
+  }
+  return pid;
+}
+
 TEST(EntityProcess, StopsCleanlyOnSigterm) {
   const int domain = testing::TestDomain(20);
   Listener listener(domain);
   const std::filesystem::path out = testing::ScratchDir("sigterm");
-  const pid_t pid = testing::Spawn(EntityArgs(domain, out, 1.0), out / "entity.log");
+  const pid_t pid = SpawnRunning(listener, domain, out);
   ASSERT_GT(pid, 0);
-  ASSERT_TRUE(listener.pose_queue.PopFor(std::chrono::seconds(30)).has_value())
-      << testing::ReadFile(out / "entity.log");
   kill(pid, SIGTERM);
   const int code = testing::WaitExit(pid, 20.0);
   const std::string log = testing::ReadFile(out / "entity.log");
@@ -155,10 +167,8 @@ TEST(EntityProcess, ACrashWritesTheSignalAndABacktraceAndStillDiesOfIt) {
   const int domain = testing::TestDomain(24);
   Listener listener(domain);
   const std::filesystem::path out = testing::ScratchDir("crash");
-  const pid_t pid = testing::Spawn(EntityArgs(domain, out, 1.0), out / "entity.log");
+  const pid_t pid = SpawnRunning(listener, domain, out);
   ASSERT_GT(pid, 0);
-  ASSERT_TRUE(listener.pose_queue.PopFor(std::chrono::seconds(30)).has_value())
-      << testing::ReadFile(out / "entity.log");
   kill(pid, SIGSEGV);
   const int code = testing::WaitExit(pid, 20.0);
   const std::string log = testing::ReadFile(out / "entity.log");
