@@ -175,35 +175,25 @@ std::vector<double> MapLocaliserTest::AlongErrors(const MapLocaliserOptions& opt
   return errors;
 }
 
-TEST_F(MapLocaliserTest, WithoutAMotionGateASingleScanJumpIsOutput) {
+// Known limit (a motion gate that held such jumps was measured worse on office and removed;
+// docs/localisation.md): a single-scan jump of the odometry is output as it is.
+TEST_F(MapLocaliserTest, ASingleScanJumpOfTheOdometryIsOutput) {
   const std::vector<double> errors = AlongErrors({}, 18.46, /*round_at_jump=*/false);
   ASSERT_EQ(errors.size(), 10u);
   EXPECT_NEAR(errors[4], 0.4, 1e-9);
   EXPECT_NEAR(errors[5], 0.0, 1e-9);
 }
 
-TEST_F(MapLocaliserTest, AMotionGateHoldsASingleScanJump) {
-  MapLocaliserOptions gated;
-  gated.motion_gate_m = 0.2;
-  const std::vector<double> errors = AlongErrors(gated, 18.46, /*round_at_jump=*/false);
-  ASSERT_EQ(errors.size(), 10u);
-  for (const double e : errors) EXPECT_NEAR(e, 0.0, 0.02);
-}
-
-// A round at the jumped keyframe next to a door (x 20.46: the plan pins the pose down along the
-// corridor there) corrects that scan; without the gate the correction carries the jump into
-// map_from_odom and every scan after it is 0.4 m behind (office seed 1 at 3.25 s and 152.75 s).
-TEST_F(MapLocaliserTest, ARoundAtAJumpedKeyframeDoesNotCarryTheJumpWithAMotionGate) {
+// Known limit: a round at the jumped keyframe next to a door (x 20.46: the plan pins the pose down
+// along the corridor there) corrects that scan, and the correction carries the jump into
+// map_from_odom, so every scan after it is 0.4 m behind (office seed 1 at 3.25 s and 152.75 s).
+TEST_F(MapLocaliserTest, ARoundAtAJumpedKeyframeCarriesTheJumpIntoLaterScans) {
   MapLocaliserOptions options;  // a window that reaches the jump (0.4 m beyond the default's)
   options.window.size_x_m = options.window.size_y_m = 1.2;
-  const std::vector<double> plain = AlongErrors(options, 20.46, /*round_at_jump=*/true);
-  ASSERT_EQ(plain.size(), 10u);
-  EXPECT_NEAR(plain[6], 0.0, 0.05);   // the jumped keyframe, corrected
-  EXPECT_NEAR(plain[7], -0.4, 0.05);  // the jump carried
-  MapLocaliserOptions gated = options;
-  gated.motion_gate_m = 0.2;
-  const std::vector<double> errors = AlongErrors(gated, 20.46, /*round_at_jump=*/true);
-  for (const double e : errors) EXPECT_NEAR(e, 0.0, 0.05);
+  const std::vector<double> errors = AlongErrors(options, 20.46, /*round_at_jump=*/true);
+  ASSERT_EQ(errors.size(), 10u);
+  EXPECT_NEAR(errors[6], 0.0, 0.05);   // the jumped keyframe, corrected
+  EXPECT_NEAR(errors[7], -0.4, 0.05);  // the jump carried
 }
 
 TEST(MapLocaliserOptions, RejectsBadValues) {
@@ -212,12 +202,6 @@ TEST(MapLocaliserOptions, RejectsBadValues) {
   EXPECT_THROW(MapLocaliser(options, {}, {}), std::invalid_argument);
   options = {};
   options.window.step_xy_m = 0.03;  // not a multiple of the 0.02 m grid
-  EXPECT_THROW(MapLocaliser(options, {}, {}), std::invalid_argument);
-  options = {};
-  options.motion_gate_m = -0.1;
-  EXPECT_THROW(MapLocaliser(options, {}, {}), std::invalid_argument);
-  options = {};
-  options.motion_gate_steps = 0;
   EXPECT_THROW(MapLocaliser(options, {}, {}), std::invalid_argument);
 }
 
@@ -279,31 +263,6 @@ TEST(MapLocaliserAlongDrop, AFeaturelessCorridorKeepsTheOdometryEvenOnItsPrior) 
   EXPECT_TRUE(round.degenerate);
   EXPECT_FALSE(round.recast);
   EXPECT_NEAR(along_error_m, 0.2, 0.03);
-}
-
-// A jump the odometry keeps (a keyframe placed wrong, the scans after it matched to it) is followed
-// after motion_gate_hold held scans, or absorbed into map_from_odom with motion_gate_absorb.
-TEST(MapLocaliserMotionGate, AKeptJumpIsFollowedOrAbsorbed) {
-  const std::vector<geometry::Segment2> walls = Corridor(false);
-  const VirtualScanner scanner(walls);
-  for (const bool absorb : {false, true}) {
-    MapLocaliserOptions options;
-    options.motion_gate_m = 0.2;
-    options.motion_gate_absorb = absorb;
-    MapLocaliser localiser(options, walls, {});
-    std::vector<double> errors;
-    for (int k = 0; k < 8; ++k) {
-      const geometry::Pose2 truth{10.0 + 0.25 * k, 1.0, 0.0};
-      odometry::OdometryEstimate estimate;
-      estimate.stamp_s = 0.25 * k;
-      estimate.world_from_body = {truth.x_m + (k >= 4 ? 0.4 : 0.0), truth.y_m, 0.0};
-      localiser.Update(scanner.Scan(truth, testing::OfficeLaser(), 361, estimate.stamp_s), estimate);
-      errors.push_back(localiser.map_from_body().x_m - truth.x_m);
-    }
-    EXPECT_NEAR(errors[4], 0.0, 0.02) << absorb;  // held (motion_gate_hold 1)
-    EXPECT_NEAR(errors[5], absorb ? 0.0 : 0.4, 0.02) << absorb;
-    EXPECT_NEAR(errors[7], absorb ? 0.0 : 0.4, 0.02) << absorb;
-  }
 }
 
 }  // namespace

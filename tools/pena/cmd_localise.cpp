@@ -81,13 +81,10 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::MapLo
       {"recast_min_rad", &o.recast_min_rad},
       {"along_search_m", &o.along_search_m},
       {"along_search_step_m", &o.along_search_step_m},
-      {"matcher.threshold_m", &o.matcher.threshold_m},
-      {"motion_gate_m", &o.motion_gate_m}};
+      {"matcher.threshold_m", &o.matcher.threshold_m}};
   const std::map<std::string, int*> ints = {{"min_hits", &o.min_hits},
                                             {"outside_after_failures", &o.outside_after_failures},
-                                            {"oversample", &o.oversample},
-                                            {"motion_gate_hold", &o.motion_gate_hold},
-                                            {"motion_gate_steps", &o.motion_gate_steps}};
+                                            {"oversample", &o.oversample}};
   for (const std::string& setting : settings) {
     if (setting.starts_with(kOdometry)) {
       odometry_settings.push_back(setting.substr(kOdometry.size()));
@@ -98,8 +95,6 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::MapLo
       o.window.size_x_m = o.window.size_y_m = value;
     } else if (name == "max_window.size_xy_m") {
       o.max_window.size_x_m = o.max_window.size_y_m = value;
-    } else if (name == "motion_gate_absorb") {
-      o.motion_gate_absorb = value != 0.0;
     } else if (const auto d = doubles.find(name); d != doubles.end()) {
       *d->second = value;
     } else if (const auto i = ints.find(name); i != ints.end()) {

@@ -3,7 +3,6 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -39,9 +38,6 @@ void Validate(const MapLocaliserOptions& o) {
   Require(o.recast_min_rad > 0.0, "recast_min_rad", "> 0 rad", o.recast_min_rad);
   Require(o.along_search_m >= 0.0, "along_search_m", ">= 0 m", o.along_search_m);
   Require(o.along_search_step_m > 0.0, "along_search_step_m", "> 0 m", o.along_search_step_m);
-  Require(o.motion_gate_m >= 0.0, "motion_gate_m", ">= 0 m (0: off)", o.motion_gate_m);
-  Require(o.motion_gate_hold >= 0, "motion_gate_hold", ">= 0 scans", o.motion_gate_hold);
-  Require(o.motion_gate_steps >= 1, "motion_gate_steps", ">= 1", o.motion_gate_steps);
 }
 
 // The window grown by `factor`, capped at `max` per extent.
@@ -103,25 +99,8 @@ struct MapLocaliser::Impl {
   int failures = 0;
   double distance_m = 0.0;
   std::optional<geometry::Pose2> last_odom;
-  // The pose on the plan at the last scan (the output) and the motion gate's state.
+  // The pose on the plan at the last scan (the output).
   geometry::Pose2 pose;
-  bool pose_on_odometry = true;  // pose is map_from_odom * odom_from_body, not a held prediction
-  std::optional<double> last_stamp_s;
-  std::deque<Eigen::Vector2d> steps_mps;  // the odometry's last steps, body frame, per second
-  int held = 0;                           // scans held in a row
-
-  Eigen::Vector2d MedianSpeed() const {
-    if (steps_mps.empty()) return Eigen::Vector2d::Zero();
-    std::vector<double> xs, ys;
-    for (const Eigen::Vector2d& v : steps_mps) xs.push_back(v.x()), ys.push_back(v.y());
-    const auto median = [](std::vector<double>& v) {
-      std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-      return v[v.size() / 2];
-    };
-    return {median(xs), median(ys)};
-  }
-  // The pose on the plan at one scan; with the motion gate, a scan off the predicted motion is held.
-  void Track(double stamp_s, const geometry::Pose2& odom_from_body);
 
   // Real returns in the body (laser) frame within the usable range band.
   scan_matching::Points2 RealPoints(const sensors::LaserScan& scan) const {
@@ -215,56 +194,11 @@ Found MapLocaliser::Impl::Judge(const scan_matching::MatchResult& match,
   return {correction, weak, in_window && Interior(match, searched)};
 }
 
-void MapLocaliser::Impl::Track(double stamp_s, const geometry::Pose2& odom_from_body) {
-  const geometry::Pose2 measured = geometry::Compose(map_from_odom, odom_from_body);
-  const std::optional<double> last = std::exchange(last_stamp_s, stamp_s);
-  if (options.motion_gate_m <= 0.0 || !last || !last_odom) {
-    pose = measured;
-    pose_on_odometry = true;
-    return;
-  }
-  const double dt_s = std::max(0.0, stamp_s - *last);
-  const geometry::Pose2 step = geometry::Compose(geometry::Inverse(*last_odom), odom_from_body);
-  if (dt_s > 0.0) {
-    steps_mps.push_back(Eigen::Vector2d(step.x_m, step.y_m) / dt_s);
-    if (steps_mps.size() > static_cast<std::size_t>(options.motion_gate_steps)) steps_mps.pop_front();
-  }
-  // The odometry's own speed, robust to its single-scan jumps (each is two outlying steps).
-  const Eigen::Vector2d speed_mps = MedianSpeed();
-  geometry::Pose2 predicted = geometry::Compose(pose, {speed_mps.x() * dt_s, speed_mps.y() * dt_s, 0.0});
-  predicted.theta_rad = measured.theta_rad;  // the gyro-fused heading does not jump
-  pose_on_odometry =
-      std::hypot(measured.x_m - predicted.x_m, measured.y_m - predicted.y_m) <= options.motion_gate_m;
-  if (pose_on_odometry) {
-    pose = measured;
-    held = 0;
-    return;
-  }
-  pose = predicted;
-  if (++held <= options.motion_gate_hold) return;
-  held = 0;
-  pose_on_odometry = true;
-  if (options.motion_gate_absorb) {
-    // The odometry stayed on its new track: the jump is its error, map_from_odom absorbs it.
-    map_from_odom = geometry::Compose(pose, geometry::Inverse(odom_from_body));
-  } else {
-    pose = measured;  // the odometry's new track is followed
-  }
-}
-
 void MapLocaliser::Impl::Conclude(const geometry::Pose2& odom_from_body, MapCorrection& round) {
   round.map_from_body_after = geometry::Compose(round.map_from_body_before, round.correction);
   if (round.accepted) {
-    if (pose_on_odometry) {
-      map_from_odom = geometry::Compose(round.map_from_body_after, geometry::Inverse(odom_from_body));
-      pose = geometry::Compose(map_from_odom, odom_from_body);
-    } else {
-      // Cast from a held prediction: the correction moves map_from_odom in the prediction's frame.
-      const geometry::Pose2 before_from_odom =
-          geometry::Compose(geometry::Inverse(round.map_from_body_before), map_from_odom);
-      map_from_odom = geometry::Compose(round.map_from_body_after, before_from_odom);
-      pose = round.map_from_body_after;
-    }
+    map_from_odom = geometry::Compose(round.map_from_body_after, geometry::Inverse(odom_from_body));
+    pose = geometry::Compose(map_from_odom, odom_from_body);
     status = status == MapStatus::kOutsideMap ? MapStatus::kReacquired : MapStatus::kInMap;
     failures = 0;
     distance_m = 0.0;
@@ -333,7 +267,7 @@ MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
                                         const geometry::Pose2& odom_from_body, bool on_prior) {
   MapCorrection round;
   round.stamp_s = scan.stamp_s;
-  round.map_from_body_before = pose;  // map_from_odom * odom_from_body unless the motion gate held it
+  round.map_from_body_before = pose;  // map_from_odom * odom_from_body
   round.window_xy_m = std::max(window.size_x_m, window.size_y_m);
   round.window_theta_rad = window.size_theta_rad;
   const scan_matching::Points2 real = RealPoints(scan);
@@ -357,8 +291,7 @@ MapLocaliser::MapLocaliser(const MapLocaliserOptions& options, std::vector<geome
   Validate(options);
   impl_ = std::make_unique<Impl>(Impl{options, VirtualScanner(std::move(plan), options.scanner),
                                       map_from_odom, MapStatus::kUnknown, options.window, 0, 0.0,
-                                      std::nullopt, map_from_odom, true, std::nullopt,
-                                      {}, 0});
+                                      std::nullopt, map_from_odom});
 }
 
 MapLocaliser::~MapLocaliser() = default;
@@ -368,7 +301,7 @@ MapLocaliser& MapLocaliser::operator=(MapLocaliser&&) noexcept = default;
 std::optional<MapCorrection> MapLocaliser::Update(const sensors::LaserScan& scan,
                                                   const odometry::OdometryEstimate& estimate,
                                                   bool force) {
-  impl_->Track(scan.stamp_s, estimate.world_from_body);
+  impl_->pose = MapFromBody(estimate.world_from_body);
   impl_->Accumulate(estimate.world_from_body);
   if (!estimate.reference_changed && !force && !impl_->options.every_scan) return std::nullopt;
   const bool matched = estimate.status == odometry::MatchStatus::kMatched ||
@@ -390,10 +323,6 @@ void MapLocaliser::Reset(const geometry::Pose2& map_from_odom) {
   impl_->distance_m = 0.0;
   impl_->window = impl_->options.window;
   impl_->pose = map_from_odom;
-  impl_->pose_on_odometry = true;
-  impl_->last_stamp_s.reset();
-  impl_->steps_mps.clear();
-  impl_->held = 0;
 }
 
 MapStatus MapLocaliser::status() const { return impl_->status; }

@@ -58,21 +58,6 @@ struct MapLocaliserOptions {
   // odometry.prior_gate_agree_gyro_m = 0.1: 0.47 m in one keyframe at 166.5 s). 0: off.
   double along_search_m = 1.0;
   double along_search_step_m = 0.25;
-  // Motion gate on the output (beyond the paper; 0 = off). Along a corridor the odometry's single
-  // scans jump 0.25-0.6 m along it and back (office: a scan matched near its reference keyframe's
-  // pose), and a round at such a keyframe carried the jump into map_from_odom for every scan
-  // after it. With a gate, each scan's pose on the plan is predicted from the previous one at the
-  // odometry's median speed (body frame, heading from the odometry); a scan whose odometry pose lies
-  // more than motion_gate_m from that prediction keeps the prediction, a round is cast from the
-  // predicted pose and corrects map_from_odom in that frame. After motion_gate_hold such scans in
-  // a row the odometry's new track is followed again (motion_gate_absorb: taken as its error,
-  // map_from_odom absorbs the jump). The speed is the median of the odometry's last
-  // motion_gate_steps steps (a single-scan jump is two outlying steps). Off: on the office
-  // missions every setting tried was worse (docs/localisation.md, "Office: error budget").
-  double motion_gate_m = 0.0;
-  int motion_gate_hold = 1;
-  bool motion_gate_absorb = false;
-  int motion_gate_steps = 5;
   // Beyond the paper: a round at every scan, not only at reference changes, so a single badly
   // matched odometry scan (a corridor along which the odometry slid) is corrected as well.
   bool every_scan = false;
@@ -128,8 +113,7 @@ class MapLocaliser {
 
   // The body pose on the plan for an odometry pose: map_from_odom * odom_from_body.
   geometry::Pose2 MapFromBody(const geometry::Pose2& odom_from_body) const;
-  // The body pose on the plan at the last scan fed to Update: MapFromBody of its odometry pose,
-  // or the motion gate's prediction where the gate held the scan (motion_gate_m).
+  // The body pose on the plan at the last scan fed to Update: MapFromBody of its odometry pose.
   const geometry::Pose2& map_from_body() const;
   const geometry::Pose2& map_from_odom() const;
   // Re-anchors the odometry frame on the plan (after a global localisation); status -> unknown.
