@@ -14,7 +14,10 @@ DdsOptions DdsFromConfig(const config::DdsConfig& config, const std::filesystem:
     out.profiles_files.push_back(ResolvePath(path, file));
   }
   if (out.profiles_files.empty()) out.profiles_files = DefaultProfilesFiles();
-  out.participant_profile = config.participant_profile();
+  // Not given: kFusionParticipantProfile (no shared memory), so a fusion restarted after
+  // kill -9 hears its entities again (fusion_options.hpp).
+  out.participant_profile = config.has_participant_profile() ? config.participant_profile()
+                                                              : kFusionParticipantProfile;
   out.domain_id = config.domain_id();
   return out;
 }

@@ -14,6 +14,13 @@
 
 namespace pena::services {
 
+// pena-fusion's participant profile when none is given (config dds.participant_profile or
+// --profile): pena_loopback without shared memory (deploy/dds/pena-loopback.xml). A fusion
+// restarted after kill -9 reuses its predecessor's ports; over Fast DDS 2.9.1 shared memory the
+// entities' channels to them sometimes stay dead and the restarted fusion hears nothing
+// (docs/fusion-service.md, "Persistence and restart").
+inline constexpr const char* kFusionParticipantProfile = "pena_loopback_udp";
+
 // A robot's laser odometry drifts far less than a person's (docs/demo.md: 0.02 m RMS against
 // 0.7-0.8 m in the team mission), so its corrections get a far smaller gain.
 inline fusion::CorrectionFilterOptions RobotFilterDefaults() {

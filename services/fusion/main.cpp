@@ -57,7 +57,9 @@ void AddOptions(CLI::App& app, Overrides& o) {
                  "With --lockstep: wall seconds an item waits for a silent entity before it is "
                  "released anyway (default 10)");
   app.add_option("--domain", o.domain_id, "DDS domain id (0..232)");
-  app.add_option("--profile", o.participant_profile, "Participant profile (default pena_loopback)");
+  app.add_option("--profile", o.participant_profile,
+                 "Participant profile (default pena_loopback_udp: pena_loopback without shared "
+                 "memory)");
   app.add_option("--profiles-file", o.profiles_files, "DDS XML profile file (repeatable)");
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error");
 }
