@@ -68,6 +68,18 @@ struct LaserOdometry::Impl {
   internal::GateConfirmation gate_confirmation;
   int gated_in_row = 0;  // gated scans since the last keyframe (see prior_gate_fallback_scans)
   std::optional<double> last_scan_stamp_s;
+  std::optional<double> previous_scan_stamp_s;  // of the scan before the one being added
+  // A poor match in a fast turn not made a keyframe (keyframe_turn_*): if the next match against
+  // the kept reference is poor too, the reference no longer covers the turn and this candidate
+  // becomes the keyframe after all (the mit-csail runs without it failed two scans later).
+  struct HeldCandidate {
+    scan_matching::Points2 points;  // scan frame
+    geometry::Pose2 world_from_body;
+    std::optional<geometry::Pose2> motion_pose;
+    std::optional<double> heading_sigma_rad;
+    bool poor_timing = false;
+  };
+  std::optional<HeldCandidate> held;
   OdometryCounts counts;
 
   OdometryEstimate AddScan(const sensors::LaserScan& scan);
@@ -76,10 +88,14 @@ struct LaserOdometry::Impl {
   scan_matching::MatchResult Search(const scan_matching::Points2& points,
                                     const geometry::Pose2& prior, OdometryEstimate& out);
   void TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out);
+  void AddKeyframe(const scan_matching::Points2& points, const geometry::Pose2& world_from_body,
+                   bool bursty);
+  void CommitHeld(OdometryEstimate& out);
   // kGated: outside the prior-consistency gate; kTrusted: outside, but the last
   // prior_gate_confirm scans all were (the motion sensor is what is wrong).
   enum class GateDecision { kInside, kGated, kTrusted };
   GateDecision CheckPriorGate(const OdometryEstimate& out);
+  bool HoldDuringFastTurn(double score, const OdometryEstimate& out) const;
   double GateBaseRad() const;
   void FallBackToPrior(const scan_matching::Points2& points, OdometryEstimate& out);
 };
@@ -188,6 +204,7 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   // Stretches matched in every direction calibrate the stride scale used in corridors.
   motion.AddPositionFix(scan.stamp_s, estimate,
                         out.status == MatchStatus::kMatched && !out.gated && !out.stale);
+  previous_scan_stamp_s = scan.stamp_s;
   if (out.stale) {
     // Its pose is the earlier scan's: the next scans go on from the prediction for now.
     estimate = out.world_from_prior;
@@ -261,6 +278,11 @@ void LaserOdometry::Impl::FallBackToPrior(const scan_matching::Points2& points,
 void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEstimate& out) {
   geometry::Pose2 prior = out.world_from_prior;
   scan_matching::MatchResult result = Search(points, prior, out);
+  if (held && result.score < options.keyframe_turn_min_score) {
+    CommitHeld(out);
+    prior = out.world_from_prior;
+    result = Search(points, prior, out);
+  }
   if (result.score < options.min_score) {
     // The motion sensor itself may be wrong (logged odometry that froze, then jumped): try
     // constant velocity and standing still too, and keep the best-scoring hypothesis.
@@ -303,12 +325,57 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
   const geometry::Pose2 moved = geometry::Between(local_map.latest().world_from_body, estimate);
   // A deviation trusted after prior_gate_confirm scans must re-anchor the priors at once: without
   // a keyframe here the next prior is as far off again and is gated again.
-  if (gate == GateDecision::kTrusted ||
-      std::hypot(moved.x_m, moved.y_m) > options.keyframe_distance_m ||
-      std::abs(moved.theta_rad) > options.keyframe_angle_rad ||
-      result.score < options.keyframe_min_score) {
+  if (gate == GateDecision::kTrusted) {
     TakeKeyframe(points, out);
+    return;
   }
+  if (result.score >= options.keyframe_turn_min_score) held.reset();  // the reference still holds
+  if (std::hypot(moved.x_m, moved.y_m) <= options.keyframe_distance_m &&
+      std::abs(moved.theta_rad) <= options.keyframe_angle_rad &&
+      result.score >= options.keyframe_min_score) {
+    return;
+  }
+  if (HoldDuringFastTurn(result.score, out)) {
+    ++counts.turn_held;  // the pose is output; the reference waits for a better match
+    held = HeldCandidate{points, estimate, motion.last_pose(), motion.heading_sigma_rad(),
+                         poor_timing};
+    return;
+  }
+  TakeKeyframe(points, out);
+}
+
+// The held candidate becomes the latest keyframe, and the scan being matched is predicted from
+// it (the prior anchored there, as in Predict).
+void LaserOdometry::Impl::CommitHeld(OdometryEstimate& out) {
+  HeldCandidate candidate = std::move(*held);
+  held.reset();
+  AddKeyframe(candidate.points, candidate.world_from_body, candidate.poor_timing);
+  keyframe_motion_pose = candidate.motion_pose;
+  keyframe_heading_sigma_rad = candidate.heading_sigma_rad;
+  ++counts.keyframes;
+  const auto& motion_pose = motion.last_pose();
+  if (!motion_pose || !keyframe_motion_pose) return;
+  motion_since_keyframe = geometry::Between(*keyframe_motion_pose, *motion_pose);
+  out.world_from_prior = geometry::Compose(candidate.world_from_body, *motion_since_keyframe);
+}
+
+// A poor match in a fast turn is the one most likely to be a few degrees off (the scan blurs,
+// the overlap with the reference shrinks), and as a keyframe it would anchor every later prior
+// and match: its heading error stays. The reference the last good match used is kept instead.
+bool LaserOdometry::Impl::HoldDuringFastTurn(double score, const OdometryEstimate& out) const {
+  if (!(options.keyframe_turn_rate_rad_s > 0.0) || score >= options.keyframe_turn_min_score ||
+      !previous_scan_stamp_s) {
+    return false;
+  }
+  const double interval_s =
+      std::max(out.stamp_s - *previous_scan_stamp_s, options.keyframe_turn_min_interval_s);
+  // The matched and the predicted rotation: logged odometry may freeze in a turn (mit-csail),
+  // a poor match may be the one that under-turned.
+  const double matched_rad =
+      std::abs(geometry::NormalizeAngle(estimate.theta_rad - previous_estimate.theta_rad));
+  const double predicted_rad = std::abs(
+      geometry::NormalizeAngle(out.world_from_prior.theta_rad - previous_estimate.theta_rad));
+  return std::max(matched_rad, predicted_rad) / interval_s > options.keyframe_turn_rate_rad_s;
 }
 
 // A match far from the motion prior is either an aliased optimum found by a grown window or a
@@ -343,18 +410,25 @@ LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const Odom
 }
 
 void LaserOdometry::Impl::TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out) {
-  const double max_gap_beams = poor_timing ? options.reference_fill_max_gap_beams_bursty
-                                           : options.reference_fill_max_gap_beams;
-  local_map.Add({estimate, internal::FillReference(
-                               scan_matching::TransformPoints(estimate, points), estimate,
-                               fill_spacing_m, options.reference_fill_max_gap_m, max_gap_beams,
-                               fill_max_range_m, options.reference_fill_band_spacing_m)});
+  held.reset();
+  AddKeyframe(points, estimate, poor_timing);
   keyframe_motion_pose = motion.last_pose();
   keyframe_heading_sigma_rad = motion.heading_sigma_rad();
-  gated_in_row = 0;
-  matcher.emplace(options.matcher, local_map.Reference());
   out.reference_changed = true;
   ++counts.keyframes;
+}
+
+void LaserOdometry::Impl::AddKeyframe(const scan_matching::Points2& points,
+                                      const geometry::Pose2& world_from_body, bool bursty) {
+  const double max_gap_beams = bursty ? options.reference_fill_max_gap_beams_bursty
+                                      : options.reference_fill_max_gap_beams;
+  local_map.Add({world_from_body,
+                 internal::FillReference(scan_matching::TransformPoints(world_from_body, points),
+                                         world_from_body, fill_spacing_m,
+                                         options.reference_fill_max_gap_m, max_gap_beams,
+                                         fill_max_range_m, options.reference_fill_band_spacing_m)});
+  gated_in_row = 0;
+  matcher.emplace(options.matcher, local_map.Reference());
 }
 
 const OdometryCounts& LaserOdometry::counts() const { return impl_->counts; }

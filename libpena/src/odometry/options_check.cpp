@@ -26,6 +26,12 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
   Require(o.keyframe_angle_rad > 0.0, "keyframe_angle_rad", "> 0 rad", o.keyframe_angle_rad);
   Require(o.keyframe_min_score >= 0.0 && o.keyframe_min_score <= 1.0, "keyframe_min_score",
           "in [0, 1]", o.keyframe_min_score);
+  Require(o.keyframe_turn_rate_rad_s >= 0.0, "keyframe_turn_rate_rad_s", ">= 0 rad/s (0: off)",
+          o.keyframe_turn_rate_rad_s);
+  Require(o.keyframe_turn_min_score >= 0.0 && o.keyframe_turn_min_score <= 1.0,
+          "keyframe_turn_min_score", "in [0, 1]", o.keyframe_turn_min_score);
+  Require(o.keyframe_turn_min_interval_s > 0.0, "keyframe_turn_min_interval_s", "> 0 s",
+          o.keyframe_turn_min_interval_s);
   Require(o.degenerate_eigen_ratio >= 0.0 && o.degenerate_eigen_ratio < 1.0,
           "degenerate_eigen_ratio", "in [0, 1)", o.degenerate_eigen_ratio);
   Require(o.degenerate_slide_ratio >= 0.0 && o.degenerate_slide_ratio < 1.0,
