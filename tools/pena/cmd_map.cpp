@@ -16,6 +16,7 @@
 #include "cli_support.hpp"
 #include "cmd_map.hpp"
 #include "commands.hpp"
+#include "pena/grid/bent_scan.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/ros_map.hpp"
 #include "pena/io/trajectory_io.hpp"
@@ -117,6 +118,15 @@ class PoseFeeder {
       ++run_.skipped_no_pose;
       return;
     }
+    std::optional<sensors::LaserScan> level;
+    if (run_.reference) {
+      if (const auto floor = grid::BentScanFloorLine(*run_.reference, *scan, *pose, {})) {
+        ++run_.bent_scans;
+        if (args_.bent_scans == "drop") return;
+        level = grid::LevelBentScan(*scan, *floor, {});
+        scan = &*level;
+      }
+    }
     if (run_.grid.Insert(*scan, *pose)) {
       ++run_.used;
     } else {
@@ -166,6 +176,18 @@ void RunMap(const MapArgs& args) {
   const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
   if (!source->description().entity_id.empty()) run.source = source->description().entity_id;
   PoseFeeder(args, trajectory, *source, run).Run();
+  if (args.bent_scans != "off" && run.used > 0) {
+    // Second pass: the same scans, those that the first pass's grid shows bent levelled or left
+    // out (docs/grid.md, "Bent scans").
+    run.reference.emplace(std::move(run.grid));
+    run.grid = grid::OccupancyGrid(grid_options);
+    run.scans = run.used = run.skipped_no_pose = run.refused = 0;
+    run.local.reset();
+    run.map = line_map::LineMap(map_options);
+    run.extractions = 0;
+    const std::unique_ptr<io::LogSource> again = io::OpenLog(args.log, args.read);
+    PoseFeeder(args, trajectory, *again, run).Run();
+  }
   if (run.used == 0) throw std::runtime_error(args.log + ": no scan could be placed in the grid");
   const auto extract_start = Clock::now();
   const grid::GridImage image = run.grid.ToImage();
@@ -220,6 +242,13 @@ void AddMapCommand(CLI::App& app) {
                    "With --refit-band: pieces this close to a wall's line are absorbed "
                    "(span only) instead of becoming duplicates (LineMap absorb_distance_m)")
       ->check(CLI::Range(0.0, 0.29))
+      ->capture_default_str();
+  command
+      ->add_option("--bent-scans", args->bent_scans,
+                   "Two passes: scans that the first pass's grid shows bent (floor hits along one "
+                   "line) are levelled (ranges cut to their horizontal part) or left out of the "
+                   "second (docs/grid.md, \"Bent scans\")")
+      ->check(CLI::IsMember({"off", "level", "drop"}))
       ->capture_default_str();
   command->add_flag("--skip-malformed", args->read.skip_malformed,
                     "Skip malformed lines (and count them) instead of stopping at the first");

@@ -28,6 +28,7 @@ struct MapArgs {
   double min_length_m = 0.35;  // shortest segment kept (extraction's min_length_m, library: 0.30)
   double refit_band_m = 0.0;       // LineMap bounded drift (0 = off), docs/line-map.md
   double absorb_distance_m = 0.0;  // LineMap absorption of near-duplicates (with the band)
+  std::string bent_scans = "off";   // "level" / "drop": two passes, bent scans levelled / left out
   bool online = false;
   bool slam = true;
   bool ignore_logged = false;  // run the odometry (+ SLAM) even when the scans carry poses  // without a trajectory and logged poses: odometry + keyframe SLAM
@@ -54,6 +55,9 @@ struct MapRun {
   long used = 0;
   long skipped_no_pose = 0;
   long refused = 0;  // Insert said no: pose not finite or grid too large
+  // --bent-scans: the first pass's grid, against which the second judges each scan.
+  std::optional<grid::OccupancyGrid> reference;
+  long bent_scans = 0;  // --bent-scans: scans the second pass found bent
   double wall_s = 0.0;
 };
 

@@ -1,5 +1,7 @@
 #include "pena/grid/occupancy_grid.hpp"
 
+#include <cmath>
+
 #include "pena/grid/scan_rays.hpp"
 
 namespace pena::grid {
@@ -39,6 +41,25 @@ bool OccupancyGrid::Insert(const sensors::LaserScan& scan,
   cells_.Insert(*rays, options_);
   ++scans_inserted_;
   return true;
+}
+
+std::vector<Eigen::Vector2d> OccupancyGrid::FreeEnds(const sensors::LaserScan& scan,
+                                                     const geometry::Pose2& world_from_laser,
+                                                     double free_log_odds) const {
+  std::vector<Eigen::Vector2d> ends_m;
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    const double range_m = scan.ranges_m[i];
+    if (!scan.IsReturn(i) || !(range_m < options_.max_range_m)) continue;
+    const double angle_rad = world_from_laser.theta_rad + scan.BeamAngle(i);
+    const Eigen::Vector2d end_m(world_from_laser.x_m + range_m * std::cos(angle_rad),
+                                world_from_laser.y_m + range_m * std::sin(angle_rad));
+    if (!end_m.allFinite()) continue;
+    if (cells_.LogOdds(CellOf(end_m)) <= free_log_odds) {
+      ends_m.emplace_back(range_m * std::cos(scan.BeamAngle(i)),
+                          range_m * std::sin(scan.BeamAngle(i)));
+    }
+  }
+  return ends_m;
 }
 
 Eigen::Vector2i OccupancyGrid::CellOf(const Eigen::Vector2d& point_m) const {

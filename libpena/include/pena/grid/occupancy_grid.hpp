@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <vector>
 
 #include "pena/geometry/pose2.hpp"
 #include "pena/grid/grid_image.hpp"
@@ -23,6 +24,13 @@ class OccupancyGrid {
   // Integrates one scan taken at `world_from_laser`. Returns false, leaving the grid unchanged,
   // when the pose is not finite or the grid would have to exceed options.max_size_m.
   bool Insert(const sensors::LaserScan& scan, const geometry::Pose2& world_from_laser);
+
+  // Returns of a scan that end in cells this grid knows to be free (log-odds <= free_log_odds),
+  // in the laser's frame. A walker bent over (or looking up) hits the floor (ceiling) where other
+  // scans saw through, along one line (docs/grid.md, "Bent scans").
+  std::vector<Eigen::Vector2d> FreeEnds(const sensors::LaserScan& scan,
+                                        const geometry::Pose2& world_from_laser,
+                                        double free_log_odds) const;
 
   // The cell containing a world point (may lie outside the current bounds).
   Eigen::Vector2i CellOf(const Eigen::Vector2d& point_m) const;
