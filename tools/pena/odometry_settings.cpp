@@ -42,6 +42,8 @@ std::map<std::string, double*> SettableOptions(odometry::LaserOdometryOptions& o
           {"tilt_ceiling_height_m", &o.tilt_ceiling_height_m},
           {"stale_changed_m", &o.stale_changed_m},
           {"matcher.threshold_m", &o.matcher.threshold_m},
+          {"matcher.prior_translation_weight_per_m", &o.matcher.prior_translation_weight_per_m},
+          {"matcher.prior_rotation_weight_per_rad", &o.matcher.prior_rotation_weight_per_rad},
           {"dead_reckoning.max_stride_period_s", &o.dead_reckoning.max_stride_period_s},
           {"dead_reckoning.stride_calibration.interval_m",
            &o.dead_reckoning.stride_calibration.interval_m},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace pena::scan_matching::internal {
@@ -9,8 +10,14 @@ namespace {
 
 struct Node {
   int angle, x, y, level;  // covers candidates [x, x + 2^level) x [y, y + 2^level)
-  long bound;
+  long hits_bound;         // the max-grid sum: no candidate of the node scores more
+  double bound;            // hits_bound times the prior penalty's maximum over the node
 };
+
+// Relative slack on an inner node's penalised bound: exp() is not guaranteed to be monotone to
+// the last bit, so without it a rounding could make a bound a hair lower than a candidate's
+// ranking. Applied only with the penalty on (off, the bound is the integer sum, exactly).
+constexpr double kPenaltySlack = 1.0 + 1e-9;
 
 class Search {
  public:
@@ -22,7 +29,10 @@ class Search {
     }
   }
 
-  long Bound(int angle, int x, int y, int level) {
+  // The node with its bound: the max-grid sum times the prior penalty at the node's closest
+  // candidate to the prior (the penalty's maximum over the node), so the bound stays an upper
+  // bound of every candidate's ranking. A leaf's bound is exactly its ranking.
+  Node MakeNode(int angle, int x, int y, int level) {
     ++scored_;
     long sum = 0;
     const int dx = x * grid_.step_cells;
@@ -30,10 +40,20 @@ class Search {
     for (const auto& cell : cells_[static_cast<std::size_t>(angle)]) {
       sum += max_grids_.At(level, cell.x() + dx, cell.y() + dy);
     }
-    return sum;
+    Node node{angle, x, y, level, sum, 0.0};
+    if (level == 0) {
+      node.bound = MakeCandidate(grid_, angle, x, y, sum).ranking;
+    } else {
+      const auto [xy_sq, theta_sq] = MinOffsetsSq(node);
+      const bool penalised = grid_.penalty_per_xy_step_sq > 0.0 || grid_.penalty_per_theta_step_sq > 0.0;
+      node.bound = static_cast<double>(sum) * PriorPenalty(grid_, xy_sq, theta_sq) *
+                   (penalised ? kPenaltySlack : 1.0);
+    }
+    return node;
   }
 
-  long MinDistanceSq(const Node& node) const {
+  // The smallest squared xy and heading index offsets from the prior over the node's candidates.
+  std::pair<long, long> MinOffsetsSq(const Node& node) const {
     auto axis = [](int low, int count, int limit, int center) -> long {
       const int high = std::min(low + count, limit) - 1;
       if (center < low) return static_cast<long>(low - center) * (low - center);
@@ -42,16 +62,20 @@ class Search {
     };
     const int size = 1 << node.level;
     const long da = node.angle - grid_.center_angle;
-    return da * da + axis(node.x, size, grid_.num_x, grid_.center_x) +
-           axis(node.y, size, grid_.num_y, grid_.center_y);
+    return {axis(node.x, size, grid_.num_x, grid_.center_x) + axis(node.y, size, grid_.num_y, grid_.center_y),
+            da * da};
+  }
+
+  long MinDistanceSq(const Node& node) const {
+    const auto [xy_sq, theta_sq] = MinOffsetsSq(node);
+    return xy_sq + theta_sq;
   }
 
   void Explore(const Node& node) {
-    if (node.bound < best_.score) return;
-    if (node.bound == best_.score && MinDistanceSq(node) > best_.distance_sq) return;
+    if (node.bound < best_.ranking) return;
+    if (node.bound == best_.ranking && MinDistanceSq(node) > best_.distance_sq) return;
     if (node.level == 0) {
-      const Candidate candidate{node.angle, node.x, node.y, node.bound,
-                                DistanceSq(grid_, node.angle, node.x, node.y)};
+      const Candidate candidate = MakeCandidate(grid_, node.angle, node.x, node.y, node.hits_bound);
       if (Better(candidate, best_)) best_ = candidate;
       return;
     }
@@ -61,7 +85,7 @@ class Search {
       const int x = node.x + ox;
       const int y = node.y + oy;
       if (x >= grid_.num_x || y >= grid_.num_y) continue;
-      children.push_back({node.angle, x, y, node.level - 1, Bound(node.angle, x, y, node.level - 1)});
+      children.push_back(MakeNode(node.angle, x, y, node.level - 1));
     }
     std::sort(children.begin(), children.end(), [](const Node& a, const Node& b) { return a.bound > b.bound; });
     for (const auto& child : children) Explore(child);
@@ -94,7 +118,7 @@ Candidate BranchAndBound(const HitGrid& hits, const MaxGrids& max_grids, const P
   for (int angle = 0; angle < grid.num_angles; ++angle) {
     for (int x = 0; x < grid.num_x; x += size) {
       for (int y = 0; y < grid.num_y; y += size) {
-        roots.push_back({angle, x, y, top_level, search.Bound(angle, x, y, top_level)});
+        roots.push_back(search.MakeNode(angle, x, y, top_level));
       }
     }
   }

@@ -2,8 +2,10 @@
 // Branch and bound over the search window (Olson 2009, "Real-time correlative scan matching";
 // Hess et al. 2016). Per heading, the xy candidates form a tree: a node covering h x h candidates is
 // bounded by summing, per scan point, the maximum of the hit grid over the h x h cells it could
-// land on (precomputed max-grids, one per h). Bounds never underestimate, so pruning keeps the
-// exact optimum of the exhaustive search; ties are broken by the same order (window_grid.hpp).
+// land on (precomputed max-grids, one per h), times the prior penalty at the node's candidate
+// closest to the prior (the penalty's maximum over the node; 1 when the penalty is off). Bounds
+// never underestimate, so pruning keeps the exact optimum of the exhaustive search; ties are
+// broken by the same order (window_grid.hpp).
 
 #include "max_grids.hpp"
 #include "pena/scan_matching/hit_grid.hpp"

@@ -40,7 +40,24 @@ struct CorrelationScanMatcher::Impl {
   }
 };
 
+void ValidateOptions(const CorrelationMatcherOptions& options) {
+  Require(options.threshold_m > 0.0, "threshold_m", " m", options.threshold_m);
+  Require(options.grid_resolution_m > 0.0, "grid_resolution_m", " m", options.grid_resolution_m);
+  Require(options.refine_iterations >= 0, "refine_iterations", " (or 0)",
+          options.refine_iterations);
+  // NaN fails both checks as well.
+  Require(options.prior_translation_weight_per_m >= 0.0 &&
+              std::isfinite(options.prior_translation_weight_per_m),
+          "prior_translation_weight_per_m", " 1/m (or 0: off), finite",
+          options.prior_translation_weight_per_m);
+  Require(options.prior_rotation_weight_per_rad >= 0.0 &&
+              std::isfinite(options.prior_rotation_weight_per_rad),
+          "prior_rotation_weight_per_rad", " 1/rad (or 0: off), finite",
+          options.prior_rotation_weight_per_rad);
+}
+
 void ValidateWindow(const SearchWindow& window, const CorrelationMatcherOptions& options) {
+  ValidateOptions(options);
   Require(window.size_x_m >= 0.0, "window.size_x_m", " m (or 0)", window.size_x_m);
   Require(window.size_y_m >= 0.0, "window.size_y_m", " m (or 0)", window.size_y_m);
   Require(window.size_theta_rad >= 0.0, "window.size_theta_rad", " rad (or 0)",
@@ -59,10 +76,7 @@ void ValidateWindow(const SearchWindow& window, const CorrelationMatcherOptions&
 CorrelationScanMatcher::CorrelationScanMatcher(const CorrelationMatcherOptions& options,
                                                const Points2& reference)
     : options_(options) {
-  Require(options.threshold_m > 0.0, "threshold_m", " m", options.threshold_m);
-  Require(options.grid_resolution_m > 0.0, "grid_resolution_m", " m", options.grid_resolution_m);
-  Require(options.refine_iterations >= 0, "refine_iterations", " (or 0)",
-          options.refine_iterations);
+  ValidateOptions(options);
   impl_ = std::make_unique<Impl>(Impl{HitGrid(reference, options.grid_resolution_m,
                                               options.threshold_m, options.graded),
                                       internal::NearestNeighbours(reference), {}});
@@ -77,7 +91,7 @@ MatchResult CorrelationScanMatcher::MatchExhaustive(const Points2& scan,
                                                     const geometry::Pose2& reference_from_prior,
                                                     const SearchWindow& window) const {
   ValidateWindow(window, options_);
-  const internal::WindowGrid grid = internal::MakeWindowGrid(window, options_.grid_resolution_m);
+  const internal::WindowGrid grid = internal::MakeWindowGrid(window, options_);
   internal::Candidate best;
   long scored = 0;
   for (int angle = 0; angle < grid.num_angles; ++angle) {
@@ -88,7 +102,7 @@ MatchResult CorrelationScanMatcher::MatchExhaustive(const Points2& scan,
         for (const auto& cell : cells) {
           hits += impl_->hits.At(cell.x() + x * grid.step_cells, cell.y() + y * grid.step_cells);
         }
-        const internal::Candidate candidate{angle, x, y, hits, internal::DistanceSq(grid, angle, x, y)};
+        const internal::Candidate candidate = internal::MakeCandidate(grid, angle, x, y, hits);
         if (internal::Better(candidate, best)) best = candidate;
         ++scored;
       }
@@ -102,7 +116,7 @@ MatchResult CorrelationScanMatcher::MatchBranchAndBound(const Points2& scan,
                                                         const geometry::Pose2& reference_from_prior,
                                                         const SearchWindow& window) const {
   ValidateWindow(window, options_);
-  const internal::WindowGrid grid = internal::MakeWindowGrid(window, options_.grid_resolution_m);
+  const internal::WindowGrid grid = internal::MakeWindowGrid(window, options_);
   long scored = 0;
   const internal::Candidate best =
       internal::BranchAndBound(impl_->hits, impl_->MaxGridsFor(grid), scan, reference_from_prior,

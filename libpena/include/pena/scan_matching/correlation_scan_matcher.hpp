@@ -28,6 +28,12 @@ struct CorrelationMatcherOptions {
   // sub-cell polish often reads as a loss and the output falls back to the grid pose, up to half
   // a step off). true: the score is computed from the exact point-to-line distances.
   bool exact_refine_check = false;
+  // Off by default (0; docs/scan-matching.md). Cartographer's real-time correlative matcher: a
+  // candidate's ranking score is multiplied by exp(-((w_t * |t - t_prior|)^2 + (w_r *
+  // |theta - theta_prior|)^2)), so among nearly equal peaks the one nearer the prior wins. Both
+  // searches apply it (branch and bound with a bound that stays admissible). Units: 1/m, 1/rad.
+  double prior_translation_weight_per_m = 0.0;
+  double prior_rotation_weight_per_rad = 0.0;
 };
 
 // The searched poses: the prior in the middle, full extents (the paper: 60 cm x 36 cm x 3 deg at
@@ -86,8 +92,12 @@ class CorrelationScanMatcher {
   std::unique_ptr<Impl> impl_;
 };
 
+// Throws std::invalid_argument naming the field if an option is out of range (the constructor
+// calls it; so does ValidateWindow, so that option checks of the matcher's users catch it early).
+void ValidateOptions(const CorrelationMatcherOptions& options);
+
 // Throws std::invalid_argument naming the field if the window is unusable for these options
-// (non-positive sizes or steps, xy step not a whole number of grid cells).
+// (non-positive sizes or steps, xy step not a whole number of grid cells) or an option is.
 void ValidateWindow(const SearchWindow& window, const CorrelationMatcherOptions& options);
 
 }  // namespace pena::scan_matching
