@@ -180,6 +180,57 @@ TEST(HumanDeadReckoning, TurningOnTheSpotAfterStoppingDoesNotSwingTheStride) {
   EXPECT_NEAR(turned.world_from_body.y_m, 0.0, 1e-9);
 }
 
+// A walker who stops part of the way through a stride (office seed 3, team ff3 at 165 s: standing
+// at a waypoint, the prior a whole stride ahead, then a 0.9 m jump back at the next report): once
+// the next report is 1.2 periods overdue the extrapolation falls back, over one more period, to
+// 30 % of the stride.
+TEST(HumanDeadReckoning, AStoppedWalkerKeepsOnlyPartOfTheStrideInProgress) {
+  HumanDeadReckoningOptions options = Carried();
+  options.stopped_stride_fraction = 0.3;
+  HumanDeadReckoning dead_reckoning(options, StartAt(0.0, 0.0, 0.0));
+  WalkStraight(dead_reckoning, 4);  // at 2.4 m at t = 2.0 s, 0.6 m strides every 0.5 s
+  EXPECT_NEAR(dead_reckoning.PriorAt(2.55).world_from_body.x_m, 3.0, 1e-9);
+  // 0.9 s after the report: 0.3 s past 1.2 periods, so 60 % of the way to 30 % of the stride.
+  EXPECT_NEAR(dead_reckoning.PriorAt(2.9).world_from_body.x_m, 2.4 + 0.6 * (0.4 + 0.6 * 0.3), 1e-9);
+  EXPECT_NEAR(dead_reckoning.PriorAt(4.0).world_from_body.x_m, 2.4 + 0.3 * 0.6, 1e-9);
+  // Walking on, the first report (a pace unknown after the stop) replaces the extrapolation.
+  dead_reckoning.Add(sensors::StrideSample{5.0, 0.6});
+  EXPECT_NEAR(dead_reckoning.PriorAt(5.0).world_from_body.x_m, 3.0, 1e-9);
+  // The default keeps the whole stride through a stop.
+  HumanDeadReckoning whole(Carried(), StartAt(0.0, 0.0, 0.0));
+  WalkStraight(whole, 4);
+  EXPECT_NEAR(whole.PriorAt(4.0).world_from_body.x_m, 3.0, 1e-9);
+  HumanDeadReckoningOptions bad = Carried();
+  bad.stopped_stride_fraction = 1.5;
+  EXPECT_THROW(HumanDeadReckoning(bad, StartAt(0.0, 0.0, 0.0)), std::invalid_argument);
+  bad = Carried();
+  bad.stopped_after_periods = 0.5;
+  EXPECT_THROW(HumanDeadReckoning(bad, StartAt(0.0, 0.0, 0.0)), std::invalid_argument);
+}
+
+// A turn on the spot right after a report (gyro above 1 rad/s): the stride in progress does not
+// advance and keeps the heading it had before the turn (the version before this one: 0.3 m on,
+// along the mean heading, 22.5 deg off).
+TEST(HumanDeadReckoning, TurningOnTheSpotHoldsTheStrideInProgress) {
+  HumanDeadReckoningOptions options = Carried();
+  options.turning_on_the_spot_rad_s = 1.0;
+  HumanDeadReckoning dead_reckoning(options, StartAt(0.0, 0.0, 0.0));
+  WalkStraight(dead_reckoning, 4);
+  for (int tick = 1; tick <= 25; ++tick) {
+    dead_reckoning.Add(sensors::GyroSample{2.0 + tick * 0.01, std::numbers::pi});  // 45 deg
+  }
+  const PosePrior turned = dead_reckoning.PriorAt(2.25);
+  EXPECT_NEAR(turned.world_from_body.theta_rad, 0.25 * std::numbers::pi, 1e-9);
+  EXPECT_NEAR(turned.world_from_body.x_m, 2.4, 1e-9);
+  EXPECT_NEAR(turned.world_from_body.y_m, 0.0, 1e-9);
+  // Walking on after the turn: the stride advances again, from where the turn held it.
+  for (int tick = 26; tick <= 40; ++tick) dead_reckoning.Add(sensors::GyroSample{2.0 + tick * 0.01, 0.0});
+  EXPECT_NEAR(dead_reckoning.PriorAt(2.40).world_from_body.x_m, 2.4 + 0.6 * 0.3, 1e-9);
+  HumanDeadReckoningOptions bad = Carried();
+  bad.turning_on_the_spot_rad_s = -1.0;
+  EXPECT_THROW(HumanDeadReckoning(bad, StartAt(0.0, 0.0, 0.0)), std::invalid_argument);
+}
+
 // Turning while walking: the stride in progress is the chord of the arc, along the mean heading.
 TEST(HumanDeadReckoning, TheStrideInProgressFollowsTheChordOfATurn) {
   HumanDeadReckoning dead_reckoning(Carried(), StartAt(0.0, 0.0, 0.0));

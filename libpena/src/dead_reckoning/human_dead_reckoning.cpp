@@ -24,6 +24,20 @@ HumanDeadReckoning::HumanDeadReckoning(const HumanDeadReckoningOptions& options,
     throw std::invalid_argument("human_dead_reckoning.max_stride_period_s must be >= 0 s, got " +
                                 std::to_string(options.max_stride_period_s));
   }
+  if (!(options.stopped_after_periods >= 1.0)) {
+    throw std::invalid_argument("human_dead_reckoning.stopped_after_periods must be >= 1, got " +
+                                std::to_string(options.stopped_after_periods));
+  }
+  if (!(options.stopped_stride_fraction >= 0.0 && options.stopped_stride_fraction <= 1.0)) {
+    throw std::invalid_argument(
+        "human_dead_reckoning.stopped_stride_fraction must be in [0, 1], got " +
+        std::to_string(options.stopped_stride_fraction));
+  }
+  if (!(options.turning_on_the_spot_rad_s >= 0.0)) {
+    throw std::invalid_argument(
+        "human_dead_reckoning.turning_on_the_spot_rad_s must be >= 0 rad/s, got " +
+        std::to_string(options.turning_on_the_spot_rad_s));
+  }
   if (!(options.max_stride_m > 0.0)) {
     throw std::invalid_argument("human_dead_reckoning.max_stride_m must be > 0 m, got " +
                                 std::to_string(options.max_stride_m));
@@ -32,7 +46,10 @@ HumanDeadReckoning::HumanDeadReckoning(const HumanDeadReckoningOptions& options,
 
 DeadReckoningEvent HumanDeadReckoning::Add(const sensors::SensorRecord& record) {
   if (const auto* gyro = std::get_if<sensors::GyroSample>(&record)) {
+    const double from_s = heading_.stamp_s();
+    const double from_heading_rad = heading_.HeadingAt(from_s);
     const HeadingEvent event = heading_.Predict(*gyro);
+    if (event == HeadingEvent::kNone) NoteTurning(from_s, from_heading_rad, *gyro);
     NoteStrideDue(gyro->stamp_s);
     if (event == HeadingEvent::kGyroGap) return Count(DeadReckoningEvent::kGyroGap);
     if (event == HeadingEvent::kOutOfOrder) return Count(DeadReckoningEvent::kOutOfOrder);
@@ -61,6 +78,8 @@ DeadReckoningEvent HumanDeadReckoning::AddStride(const sensors::StrideSample& st
   const double heading = heading_.HeadingAt(stride.stamp_s);
   last_stride_heading_rad_ = heading;
   due_heading_rad_.reset();
+  turning_s_ = 0.0;
+  turn_start_heading_rad_.reset();
   const Eigen::Vector2d direction(std::cos(heading), std::sin(heading));
   const Eigen::Vector2d normal(-direction.y(), direction.x());
   const double length_m = calibration_.scale() * stride.length_m;
@@ -95,18 +114,45 @@ void HumanDeadReckoning::NoteStrideDue(double stamp_s) {
   }
 }
 
+void HumanDeadReckoning::NoteTurning(double from_s, double from_heading_rad,
+                                     const sensors::GyroSample& gyro) {
+  if (options_.turning_on_the_spot_rad_s <= 0.0 || !PaceKnown()) return;
+  if (std::abs(gyro.yaw_rate_rad_s) <= options_.turning_on_the_spot_rad_s) return;
+  const double start_s = std::max(from_s, last_stride_stamp_s_);
+  if (!(gyro.stamp_s > start_s)) return;
+  // The heading before this gyro interval (a report inside it: the report's heading).
+  if (!turn_start_heading_rad_) {
+    turn_start_heading_rad_ = from_s >= last_stride_stamp_s_ ? from_heading_rad : last_stride_heading_rad_;
+  }
+  turning_s_ += gyro.stamp_s - start_s;
+}
+
+double HumanDeadReckoning::AheadFraction(double stamp_s) const {
+  const double since_s = stamp_s - last_stride_stamp_s_;
+  const double period_s = last_stride_period_s_;
+  const double walked = std::clamp((since_s - turning_s_) / period_s, 0.0, 1.0);
+  // Overdue by stopped_after_periods: the walker stopped; blend to the stopped fraction over a period.
+  const double stopped_s = since_s - options_.stopped_after_periods * period_s;
+  if (stopped_s <= 0.0) return walked;
+  const double weight = std::min(stopped_s / period_s, 1.0);
+  return (1.0 - weight) * walked + weight * std::min(walked, options_.stopped_stride_fraction);
+}
+
 Eigen::Vector2d HumanDeadReckoning::AheadRawM(double stamp_s) const {
   if (!PaceKnown()) return Eigen::Vector2d::Zero();
   const double since_s = stamp_s - last_stride_stamp_s_;
   if (!(since_s > 0.0)) return Eigen::Vector2d::Zero();
-  const double fraction = std::min(since_s / last_stride_period_s_, 1.0);
+  const double fraction = AheadFraction(stamp_s);
   // The stride in progress runs from the last report's heading to the heading now, or, once the
   // next report is overdue (the walker stopped, or slowed), to the heading when it was due: a
   // turn on the spot after stopping must not swing the stride round with the body (an earlier
   // version took the heading now, which moved the prior by up to two strides during such turns).
+  // Likewise a turn on the spot (turning_on_the_spot_rad_s) keeps the heading it started from.
+  const double now_heading = heading_.HeadingAt(stamp_s);
   const double end_heading =
-      since_s < last_stride_period_s_ ? heading_.HeadingAt(stamp_s)
-                                      : due_heading_rad_.value_or(heading_.HeadingAt(stamp_s));
+      turn_start_heading_rad_ ? *turn_start_heading_rad_
+      : since_s < last_stride_period_s_ ? now_heading
+                                        : due_heading_rad_.value_or(now_heading);
   // Chord of a steady turn: along the mean of the start and end headings.
   const double heading =
       last_stride_heading_rad_ + 0.5 * geometry::NormalizeAngle(end_heading - last_stride_heading_rad_);
@@ -132,6 +178,7 @@ void HumanDeadReckoning::Reset(const PosePrior& corrected) {
                                                    heading_.HeadingAt(corrected.stamp_s));
   last_stride_heading_rad_ += turn_rad;
   if (due_heading_rad_) *due_heading_rad_ += turn_rad;
+  if (turn_start_heading_rad_) *turn_start_heading_rad_ += turn_rad;
   heading_.Reset(corrected.world_from_body.theta_rad, std::sqrt(corrected.covariance(2, 2)));
   // The correction holds at its stamp, extrapolation included: the next stride report replaces
   // the extrapolated part, so keep the position of the last report that the correction implies.

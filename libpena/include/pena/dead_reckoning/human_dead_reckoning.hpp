@@ -25,6 +25,19 @@ struct HumanDeadReckoningOptions {
   // max_stride_period_s (longer: the walker had stopped, the pace is unknown). 0 disables it
   // (the default: strides move the position at their reports only).
   double max_stride_period_s = 0.0;
+  // A walker whose next report is this many stride periods overdue has stopped, most often part of
+  // the way through the stride (the rest is in the first report after walking on): from then on,
+  // over one more period, the extrapolation falls back to stopped_stride_fraction of the stride.
+  // Carrying a whole stride through a stop puts it up to a stride ahead of a standing walker and
+  // makes the prior jump back at the next report (turns on the spot at corners and waypoints).
+  // Default 1 (the whole stride kept): 0.3 halves the worst prior jumps but was not better over
+  // the simulated missions (docs/dead-reckoning.md).
+  double stopped_after_periods = 1.2;
+  double stopped_stride_fraction = 1.0;
+  // People turn on the spot: while the gyro turns faster than this the stride in progress does not
+  // advance, and it keeps the heading it had when the turn started (0, the default: always
+  // advances; 1 rad/s measured with the above in docs/dead-reckoning.md).
+  double turning_on_the_spot_rad_s = 0.0;
   // The stride scale learnt from position fixes (AddPositionFix), applied to every stride.
   StrideCalibrationOptions stride_calibration;
 };
@@ -86,6 +99,11 @@ class HumanDeadReckoning {
   // Remembers the heading when the next stride report became due (called with every gyro and
   // compass sample).
   void NoteStrideDue(double stamp_s);
+  // Adds the part of a gyro interval (from from_s, heading then from_heading_rad) after the last
+  // report to turning_s_ if it turned on the spot.
+  void NoteTurning(double from_s, double from_heading_rad, const sensors::GyroSample& gyro);
+  // The part of the last stride walked by stamp_s at its pace (turns on the spot and stops held).
+  double AheadFraction(double stamp_s) const;
   // World-frame displacement walked since the last stride report, extrapolated at the last
   // stride's pace, at most one stride (raw: before the stride scale).
   Eigen::Vector2d AheadRawM(double stamp_s) const;
@@ -100,6 +118,8 @@ class HumanDeadReckoning {
   double last_stride_period_s_ = 0.0;  // time from the stride before it (0: none yet)
   double last_stride_heading_rad_ = 0.0;        // heading at the last stride report
   std::optional<double> due_heading_rad_;       // heading when the next report became due
+  double turning_s_ = 0.0;  // time since the last report spent turning on the spot
+  std::optional<double> turn_start_heading_rad_;  // heading when that turning started
   DeadReckoningCounts counts_;
   StrideCalibration calibration_;
   Eigen::Vector2d raw_walk_m_ = Eigen::Vector2d::Zero();  // unscaled strides along the heading
