@@ -67,6 +67,7 @@ struct LaserOdometry::Impl {
   std::optional<geometry::Pose2> motion_since_keyframe;
   internal::GateConfirmation gate_confirmation;
   int gated_in_row = 0;  // gated scans since the last keyframe (see prior_gate_fallback_scans)
+  int heading_off_in_row = 0;  // matched scans off the gyro + compass heading (heading_bound_rad)
   std::optional<double> last_scan_stamp_s;
   std::optional<double> previous_scan_stamp_s;  // of the scan before the one being added
   // A poor match in a fast turn not made a keyframe (keyframe_turn_*): if the next match against
@@ -98,6 +99,7 @@ struct LaserOdometry::Impl {
   bool HoldDuringFastTurn(double score, const OdometryEstimate& out) const;
   double GateBaseRad() const;
   void FallBackToPrior(const scan_matching::Points2& points, OdometryEstimate& out);
+  bool HeadingOffTheFilter();
 };
 
 namespace {
@@ -275,6 +277,20 @@ void LaserOdometry::Impl::FallBackToPrior(const scan_matching::Points2& points,
   TakeKeyframe(points, out);
 }
 
+// True when the matched heading has been off the gyro + compass filter's heading by more than
+// heading_bound_rad for heading_bound_scans scans in a row (people only; off at 0).
+bool LaserOdometry::Impl::HeadingOffTheFilter() {
+  if (!(options.heading_bound_rad > 0.0) || motion.mode() != MotionPrior::kDeadReckoning ||
+      !motion.last_pose()) {
+    return false;
+  }
+  const double off_rad = geometry::NormalizeAngle(estimate.theta_rad - motion.last_pose()->theta_rad);
+  heading_off_in_row = std::abs(off_rad) > options.heading_bound_rad ? heading_off_in_row + 1 : 0;
+  if (heading_off_in_row < options.heading_bound_scans) return false;
+  heading_off_in_row = 0;
+  return true;
+}
+
 void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEstimate& out) {
   geometry::Pose2 prior = out.world_from_prior;
   scan_matching::MatchResult result = Search(points, prior, out);
@@ -321,6 +337,11 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
     return;
   }
   gated_in_row = 0;
+  if (HeadingOffTheFilter()) {
+    ++counts.heading_resets;
+    FallBackToPrior(points, out);
+    return;
+  }
   window.Shrink();
   const geometry::Pose2 moved = geometry::Between(local_map.latest().world_from_body, estimate);
   // A deviation trusted after prior_gate_confirm scans must re-anchor the priors at once: without
