@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "pena/odometry/laser_odometry.hpp"
+#include "team_entity.hpp"
 #include "pena/sim/scenario.hpp"
 #include "pena/sim/simulator.hpp"
 
@@ -23,19 +24,7 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-const sim::EntityRecording& Firefighter1() {
-  static const sim::EntityRecording ff1 = [] {
-    const sim::Scenario scenario =
-        sim::ParseScenario(std::string(*sim::BuiltinScenarioText("team")), "builtin:team");
-    sim::SimulationOptions options;
-    options.seed = 1;
-    for (const auto& entity : sim::Simulator{options}.Run(scenario).entities) {
-      if (entity.id == "ff1") return entity;
-    }
-    throw std::runtime_error("no ff1 in the team scenario");
-  }();
-  return ff1;
-}
+const sim::EntityRecording& Firefighter1() { return testing::TeamEntity("ff1"); }
 
 // Replays ff1's whole walk from its known start pose.
 std::vector<OdometryEstimate> Replay(const LaserOdometryOptions& options) {

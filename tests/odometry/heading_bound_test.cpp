@@ -10,6 +10,7 @@
 #include <string>
 
 #include "pena/odometry/laser_odometry.hpp"
+#include "team_entity.hpp"
 #include "pena/sim/scenario.hpp"
 #include "pena/sim/simulator.hpp"
 
@@ -18,18 +19,7 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-const sim::EntityRecording& Firefighter() {
-  static const sim::EntityRecording person = [] {
-    const sim::Scenario scenario =
-        sim::ParseScenario(std::string(*sim::BuiltinScenarioText("team")), "builtin:team");
-    const sim::Simulator simulator{sim::SimulationOptions{}};
-    for (const auto& entity : simulator.Run(scenario).entities) {
-      if (entity.id == "ff2") return entity;
-    }
-    throw std::runtime_error("no ff2 in the team scenario");
-  }();
-  return person;
-}
+const sim::EntityRecording& Firefighter() { return testing::TeamEntity("ff2"); }
 
 struct BoundRun {
   double mean_heading_error_rad = 0.0;  // over the scans after the first 30 s

@@ -1,5 +1,6 @@
 // The per-entity chain on simulated missions (ground truth known) and on broken input.
 #include "pena/odometry/laser_odometry.hpp"
+#include "team_entity.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,22 +17,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 // The team scenario's robot (level laser, wheel odometry) and its first firefighter.
-const sim::SimulationResult& Team() {
-  static const sim::SimulationResult result = [] {
-    const sim::Scenario scenario =
-        sim::ParseScenario(std::string(*sim::BuiltinScenarioText("team")), "builtin:team");
-    const sim::Simulator simulator{sim::SimulationOptions{}};
-    return simulator.Run(scenario);
-  }();
-  return result;
-}
-
-const sim::EntityRecording& Entity(const std::string& id) {
-  for (const auto& entity : Team().entities) {
-    if (entity.id == id) return entity;
-  }
-  throw std::runtime_error("no entity " + id);
-}
+const sim::EntityRecording& Entity(const std::string& id) { return testing::TeamEntity(id); }
 
 struct Replayed {
   std::vector<OdometryEstimate> estimates;

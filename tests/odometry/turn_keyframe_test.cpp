@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pena/odometry/laser_odometry.hpp"
+#include "team_entity.hpp"
 #include "pena/sim/scenario.hpp"
 #include "pena/sim/simulator.hpp"
 
@@ -20,18 +21,7 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-const sim::EntityRecording& Robot() {
-  static const sim::EntityRecording robot = [] {
-    const sim::Scenario scenario =
-        sim::ParseScenario(std::string(*sim::BuiltinScenarioText("team")), "builtin:team");
-    const sim::Simulator simulator{sim::SimulationOptions{}};
-    for (const auto& entity : simulator.Run(scenario).entities) {
-      if (entity.id == "robot1") return entity;
-    }
-    throw std::runtime_error("no robot1 in the team scenario");
-  }();
-  return robot;
-}
+const sim::EntityRecording& Robot() { return testing::TeamEntity("robot1"); }
 
 struct Replayed {
   std::vector<OdometryEstimate> estimates;
