@@ -49,5 +49,8 @@ run_pair() {  # name pub_profile sub_profile profile_file
 }
 
 run_pair lan pena_lan pena_lan pena-lan.xml
+# The central fusion's LAN profile (no shared memory) against an entity's pena_lan, both ways.
+run_pair lan_udp_pub pena_lan_udp pena_lan pena-lan.xml
+run_pair lan_udp_sub pena_lan pena_lan_udp pena-lan.xml
 run_pair discovery_server pena_ds_server pena_ds_client pena-discovery-server.xml
-echo "PASSED: both profiles carry poses between network namespaces"
+echo "PASSED: the LAN profiles and the discovery server carry poses between network namespaces"
