@@ -60,29 +60,29 @@ OccupancyGrid LevelWalk() {
 
 TEST(BentScan, FindsTheFloorLineOfAPitchedScanAndNotOfALevelOne) {
   const OccupancyGrid walk = LevelWalk();
-  const BentScanOptions options;
-  EXPECT_FALSE(BentScanFloorLine(walk, TiltedScan(3.0, 0.0), {3.0, 0.0, 0.0}, options));
+  const BentScanLeveller leveller;
+  EXPECT_FALSE(leveller.FloorLineOf(walk, TiltedScan(3.0, 0.0), {3.0, 0.0, 0.0}));
   const double pitch = 15.0 * std::numbers::pi / 180.0;
-  const auto floor = BentScanFloorLine(walk, TiltedScan(3.0, pitch), {3.0, 0.0, 0.0}, options);
+  const auto floor = leveller.FloorLineOf(walk, TiltedScan(3.0, pitch), {3.0, 0.0, 0.0});
   ASSERT_TRUE(floor);
   EXPECT_NEAR(floor->distance_m, kLaserHeightM / std::sin(pitch), 0.05);  // 4.64 m
   EXPECT_NEAR(floor->normal.x(), 1.0, 0.01);
   // A mild lean (4 deg) meets the floor 17 m ahead: beyond max_ahead_m, not judged bent.
-  EXPECT_FALSE(BentScanFloorLine(walk, TiltedScan(3.0, 4.0 * std::numbers::pi / 180.0),
-                                 {3.0, 0.0, 0.0}, options));
+  EXPECT_FALSE(leveller.FloorLineOf(walk, TiltedScan(3.0, 4.0 * std::numbers::pi / 180.0),
+                                    {3.0, 0.0, 0.0}));
 }
 
 TEST(BentScan, LevellingRestoresTheHorizontalRangesOfATiltWithRoll) {
   const OccupancyGrid walk = LevelWalk();
-  const BentScanOptions options;
+  const BentScanLeveller leveller;
   // Tilted 14 deg about an axis turned 25 deg (pitch with roll): the floor line's normal too.
   const double tilt = 14.0 * std::numbers::pi / 180.0;
   const double normal = 25.0 * std::numbers::pi / 180.0;
   const sensors::LaserScan bent = TiltedScan(3.0, tilt, normal);
-  const auto floor = BentScanFloorLine(walk, bent, {3.0, 0.0, 0.0}, options);
+  const auto floor = leveller.FloorLineOf(walk, bent, {3.0, 0.0, 0.0});
   ASSERT_TRUE(floor);
   EXPECT_NEAR(std::atan2(floor->normal.y(), floor->normal.x()), normal, 0.02);
-  const sensors::LaserScan level = LevelBentScan(bent, *floor, options);
+  const sensors::LaserScan level = leveller.Level(bent, *floor);
   int walls = 0;
   int dropped = 0;
   double worst_m = 0.0;
@@ -117,6 +117,18 @@ TEST(BentScan, RefusesBadOptionsNamingTheField) {
   options.max_ahead_m = options.min_ahead_m;
   EXPECT_THROW(ValidateBentScanOptions(options), std::invalid_argument);
   EXPECT_NO_THROW(ValidateBentScanOptions({}));
+}
+
+TEST(BentScan, LevellerRefusesBadOptionsAtConstruction) {
+  BentScanOptions options;
+  options.floor_band = 1.0;
+  try {
+    const BentScanLeveller leveller(options);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("bent_scan.floor_band"), std::string::npos);
+  }
+  EXPECT_NO_THROW(BentScanLeveller{});
 }
 
 }  // namespace

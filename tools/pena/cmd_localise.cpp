@@ -2,15 +2,12 @@
 // virtual scan matching against the plan, optionally starting from a global localisation. Writes
 // DIR/trajectory.tum, status.csv, summary.json and localisation.png. Options, outputs and the
 // measured figures: docs/localisation.md.
-#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
-#include <numbers>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <stdexcept>
@@ -19,29 +16,17 @@
 #include <vector>
 
 #include "cli_support.hpp"
-#include "odometry_settings.hpp"
+#include "cmd_localise.hpp"
 #include "commands.hpp"
-#include "pena/eval/stamp_matching.hpp"
+#include "odometry_settings.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/plan_reader.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/localisation/localisation_chain.hpp"
-#include "pena/viz/map_canvas.hpp"
 
 namespace pena::cli {
+namespace localise {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-struct LocaliseArgs {
-  std::string log, map, out, start, map_transform;
-  double map_scale = 1.0;
-  bool global = false;
-  bool every_scan = false;
-  bool quiet = false;
-  io::ReadOptions read;
-  std::vector<std::string> settings;  // --set NAME=VALUE (numeric plan-matching options, for sweeps)
-};
 
 // "X,Y,THETA_DEG" -> pose (metres, metres, radians); anything else is a usage error naming `option`.
 geometry::Pose2 ParsePose(const std::string& text, const std::string& option) {
@@ -119,18 +104,6 @@ std::vector<geometry::Segment2> LoadPlan(const LocaliseArgs& args) {
   return plan;
 }
 
-// Everything the run produced.
-struct Run {
-  std::vector<localisation::LocalisedPose> poses;
-  std::vector<localisation::MapCorrection> rounds;
-  std::optional<localisation::GlobalResult> global;  // the one that anchored the start
-  double global_stamp_s = 0.0;
-  int global_attempts = 0;
-  std::string start_source;
-  long records = 0;
-  double wall_s = 0.0;
-};
-
 Run RunChain(const LocaliseArgs& args, io::LogSource& source, std::vector<geometry::Segment2> plan) {
   const auto started = Clock::now();
   std::vector<sensors::SensorRecord> read_ahead;
@@ -171,187 +144,6 @@ Run RunChain(const LocaliseArgs& args, io::LogSource& source, std::vector<geomet
   return run;
 }
 
-geometry::Trajectory Trajectory(const Run& run) {
-  geometry::Trajectory out;
-  for (const auto& p : run.poses) {
-    if (p.anchored) out.push_back({p.stamp_s, p.map_from_body});
-  }
-  return out;
-}
-
-void WriteStatusCsv(const std::filesystem::path& path, const Run& run) {
-  std::ofstream out(path);
-  out << "stamp,status,accepted,confidence,score,hits,points,virtual_points,constraint_ratio,"
-         "degenerate,along_drop,window_xy_m,window_theta_deg,correction_x,correction_y,correction_theta_deg,"
-         "x,y,theta,recast,first_score\n";
-  for (const localisation::MapCorrection& r : run.rounds) {
-    const geometry::Pose2& c = r.correction;
-    const geometry::Pose2& p = r.map_from_body_after;
-    out << Fixed(r.stamp_s, 6) << ',' << localisation::ToString(r.status) << ',' << (r.accepted ? 1 : 0)
-        << ',' << Fixed(r.confidence, 3) << ',' << Fixed(r.score, 3) << ',' << r.hits << ',' << r.points
-        << ',' << r.virtual_points << ',' << Fixed(r.constraint_ratio, 4) << ',' << (r.degenerate ? 1 : 0)
-        << ',' << Fixed(r.along_drop, 3) << ',' << Fixed(r.window_xy_m, 3) << ',' << Fixed(r.window_theta_rad / kDeg, 2) << ','
-        << Fixed(c.x_m, 4) << ',' << Fixed(c.y_m, 4) << ',' << Fixed(c.theta_rad / kDeg, 3) << ','
-        << Fixed(p.x_m, 4) << ',' << Fixed(p.y_m, 4) << ',' << Fixed(p.theta_rad, 5) << ','
-        << (r.recast ? 1 : 0) << ',' << Fixed(r.first_score, 3) << '\n';
-  }
-  if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
-}
-
-// Errors against a simulated mission's truth.tum: inside the plan's box (the mapped part) and
-// the recovery after each re-entry from outside it.
-struct TruthErrors {
-  long in_map = 0, outside = 0;
-  double in_map_rms_m = 0.0, in_map_heading_rms_deg = 0.0;  // excluding 5 m after re-entries
-  double all_in_map_rms_m = 0.0;                            // including them
-  std::vector<double> recovery_m;  // per re-entry: walked metres until the error is < 0.15 m
-};
-
-bool InBox(const geometry::Pose2& p, const std::vector<geometry::Segment2>& plan) {
-  Eigen::Vector2d lo = plan.front().start_m, hi = lo;
-  for (const auto& s : plan) lo = lo.cwiseMin(s.start_m).cwiseMin(s.end_m), hi = hi.cwiseMax(s.start_m).cwiseMax(s.end_m);
-  return p.x_m >= lo.x() && p.x_m <= hi.x() && p.y_m >= lo.y() && p.y_m <= hi.y();
-}
-
-TruthErrors CompareWithTruth(const geometry::Trajectory& estimate, const geometry::Trajectory& truth,
-                             const std::vector<geometry::Segment2>& plan) {
-  TruthErrors e;
-  double sum_sq = 0.0, sum_all_sq = 0.0, heading_sq = 0.0;
-  long all = 0;
-  bool was_in = true;
-  double since_entry_m = 1e9;
-  std::optional<geometry::Pose2> last_truth;
-  std::optional<double> recovering;
-  for (const auto& est : estimate) {
-    const auto index = eval::FindStamp(truth, est.stamp_s);
-    if (!index) continue;
-    const geometry::Pose2& t = truth[*index].pose;
-    if (last_truth) since_entry_m += std::hypot(t.x_m - last_truth->x_m, t.y_m - last_truth->y_m);
-    last_truth = t;
-    const bool in = InBox(t, plan);
-    if (in && !was_in) since_entry_m = 0.0, recovering = 0.0;
-    was_in = in;
-    const double err = std::hypot(est.pose.x_m - t.x_m, est.pose.y_m - t.y_m);
-    if (!in) { ++e.outside; continue; }
-    if (recovering && err < 0.15) e.recovery_m.push_back(since_entry_m), recovering.reset();
-    sum_all_sq += err * err, ++all;
-    if (since_entry_m < 5.0) continue;
-    const double dh = geometry::NormalizeAngle(est.pose.theta_rad - t.theta_rad) / kDeg;
-    sum_sq += err * err, heading_sq += dh * dh, ++e.in_map;
-  }
-  if (recovering) e.recovery_m.push_back(-1.0);  // never recovered
-  const double n = static_cast<double>(e.in_map);
-  if (e.in_map > 0) e.in_map_rms_m = std::sqrt(sum_sq / n), e.in_map_heading_rms_deg = std::sqrt(heading_sq / n);
-  if (all > 0) e.all_in_map_rms_m = std::sqrt(sum_all_sq / static_cast<double>(all));
-  return e;
-}
-
-// Like the paper's Fig. 9: the plan, the path on it, stretches judged outside the plan in another
-// colour, re-acquisitions ringed; the true path (simulation) underneath.
-cv::Mat Picture(const Run& run, const std::vector<geometry::Segment2>& plan, const geometry::Trajectory& truth,
-                const std::string& title) {
-  Eigen::Vector2d lo = plan.front().start_m, hi = lo;
-  for (const auto& s : plan) lo = lo.cwiseMin(s.start_m).cwiseMin(s.end_m), hi = hi.cwiseMax(s.start_m).cwiseMax(s.end_m);
-  for (const auto& p : run.poses) {
-    if (p.anchored) lo = lo.cwiseMin(Eigen::Vector2d(p.map_from_body.x_m, p.map_from_body.y_m)),
-                    hi = hi.cwiseMax(Eigen::Vector2d(p.map_from_body.x_m, p.map_from_body.y_m));
-  }
-  viz::MapCanvasOptions options;
-  options.legend_panel_px = 230;
-  viz::MapCanvas canvas(lo.array() - 1.0, hi.array() + 1.0, options);
-  canvas.DrawSegments(plan, viz::colors::kBlack, 2);
-  std::vector<Eigen::Vector2d> truth_m;
-  for (const auto& t : truth) truth_m.emplace_back(t.pose.x_m, t.pose.y_m);
-  if (!truth_m.empty()) canvas.DrawPolyline(truth_m, viz::colors::kGreen, 1);
-  for (std::size_t i = 1; i < run.poses.size(); ++i) {
-    const auto& a = run.poses[i - 1];
-    const auto& b = run.poses[i];
-    if (!a.anchored || !b.anchored) continue;
-    const bool outside = b.status == localisation::MapStatus::kOutsideMap;
-    canvas.DrawSegment({{a.map_from_body.x_m, a.map_from_body.y_m}, {b.map_from_body.x_m, b.map_from_body.y_m}},
-                       outside ? viz::colors::kRed : viz::colors::kBlue, 2);
-  }
-  for (const auto& r : run.rounds) {
-    if (r.status == localisation::MapStatus::kReacquired) {
-      canvas.DrawCircle({r.map_from_body_after.x_m, r.map_from_body_after.y_m}, 0.4, viz::colors::kPurple, 2);
-    }
-  }
-  const auto first = std::find_if(run.poses.begin(), run.poses.end(), [](const auto& p) { return p.anchored; });
-  if (first != run.poses.end()) canvas.DrawCircle({first->map_from_body.x_m, first->map_from_body.y_m}, 0.5, viz::colors::kBlack, 2);
-  canvas.DrawText(hi + Eigen::Vector2d(-0.5 * (hi.x() - lo.x()), 0.7), title, viz::colors::kBlack);
-  canvas.AddLegendEntry("a priori plan", viz::colors::kBlack);
-  canvas.AddLegendEntry("path, matched on the plan", viz::colors::kBlue);
-  canvas.AddLegendEntry("path, outside the plan", viz::colors::kRed);
-  canvas.AddLegendEntry("re-acquired", viz::colors::kPurple);
-  if (!truth_m.empty()) canvas.AddLegendEntry("true path", viz::colors::kGreen);
-  canvas.DrawScaleBar();
-  canvas.DrawLegend();
-  return canvas.image();
-}
-
-struct Counts {
-  long rounds = 0, accepted = 0, reacquired = 0, outside_rounds = 0, outside_scans = 0;
-  double mean_confidence = 0.0;  // over accepted rounds
-};
-
-Counts CountRun(const Run& run) {
-  Counts c;
-  for (const auto& r : run.rounds) {
-    ++c.rounds;
-    if (r.accepted) ++c.accepted, c.mean_confidence += r.confidence;
-    if (r.status == localisation::MapStatus::kReacquired) ++c.reacquired;
-    if (r.status == localisation::MapStatus::kOutsideMap) ++c.outside_rounds;
-  }
-  for (const auto& p : run.poses) c.outside_scans += p.status == localisation::MapStatus::kOutsideMap ? 1 : 0;
-  if (c.accepted > 0) c.mean_confidence /= static_cast<double>(c.accepted);
-  return c;
-}
-
-std::string GlobalJson(const Run& run) {
-  if (!run.global) return "null";
-  std::string out = "{\"stamp\": " + Fixed(run.global_stamp_s, 6) + ", \"attempts\": " +
-                    std::to_string(run.global_attempts) + ", \"margin\": " + Fixed(run.global->margin, 3) +
-                    ", \"hypotheses\": [";
-  for (std::size_t i = 0; i < run.global->hypotheses.size(); ++i) {
-    const auto& h = run.global->hypotheses[i];
-    out += (i ? ", " : "") + std::string("{\"x\": ") + Fixed(h.map_from_body.x_m, 3) + ", \"y\": " +
-           Fixed(h.map_from_body.y_m, 3) + ", \"theta_deg\": " + Fixed(h.map_from_body.theta_rad / kDeg, 2) +
-           ", \"score\": " + Fixed(h.score, 3) + "}";
-  }
-  return out + "]}";
-}
-
-std::string TruthJson(const std::optional<TruthErrors>& e) {
-  if (!e) return "null";
-  std::string recovery = "[";
-  for (std::size_t i = 0; i < e->recovery_m.size(); ++i) recovery += (i ? ", " : "") + Fixed(e->recovery_m[i], 2);
-  return "{\"in_map_scans\": " + std::to_string(e->in_map) + ", \"outside_scans\": " + std::to_string(e->outside) +
-         ", \"in_map_rms_m\": " + Fixed(e->in_map_rms_m, 4) + ", \"in_map_heading_rms_deg\": " +
-         Fixed(e->in_map_heading_rms_deg, 3) + ", \"all_in_map_rms_m\": " + Fixed(e->all_in_map_rms_m, 4) +
-         ", \"recovery_walk_m\": " + recovery + "]}";
-}
-
-void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, const Run& run,
-                  const std::optional<TruthErrors>& truth) {
-  const Counts c = CountRun(run);
-  std::ofstream out(path);
-  out << "{\"log\": " << JsonString(args.log) << ", \"map\": " << JsonString(args.map)
-      << ", \"start_pose_source\": " << JsonString(run.start_source) << ", \"records\": " << run.records
-      << ", \"scans\": " << run.poses.size() << ", \"rounds\": " << c.rounds << ", \"accepted\": " << c.accepted
-      << ", \"reacquired\": " << c.reacquired << ", \"outside_rounds\": " << c.outside_rounds
-      << ", \"outside_scans\": " << c.outside_scans << ", \"mean_confidence\": " << Fixed(c.mean_confidence, 3)
-      << ", \"global\": " << GlobalJson(run) << ", \"truth\": " << TruthJson(truth)
-      << ", \"processing_wall_s\": " << Fixed(run.wall_s, 3) << "}\n";
-  if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
-}
-
-// truth.tum next to a simulated entity's native log, if there is one.
-geometry::Trajectory TruthNextTo(const io::LogSource& source) {
-  const std::filesystem::path truth = source.description().path.parent_path() / "truth.tum";
-  if (source.description().format != "pena-log" || !std::filesystem::exists(truth)) return {};
-  return io::ReadTum(truth);
-}
-
 void RunLocalise(const LocaliseArgs& args) {
   const std::vector<geometry::Segment2> plan = LoadPlan(args);
   const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
@@ -381,8 +173,10 @@ void RunLocalise(const LocaliseArgs& args) {
 }
 
 }  // namespace
+}  // namespace localise
 
 void AddLocaliseCommand(CLI::App& app) {
+  using localise::LocaliseArgs;
   auto args = std::make_shared<LocaliseArgs>();
   CLI::App* command = app.add_subcommand(
       "localise", "Localise a log on an a priori plan (virtual scan matching, global start)");
@@ -408,7 +202,7 @@ void AddLocaliseCommand(CLI::App& app) {
                       "docs/localisation.md); repeatable");
   command->callback([args] {
     if (args->global && !args->start.empty()) throw std::runtime_error("--global and --start exclude each other");
-    RunLocalise(*args);
+    localise::RunLocalise(*args);
   });
 }
 

@@ -16,7 +16,6 @@
 #include "cli_support.hpp"
 #include "cmd_map.hpp"
 #include "commands.hpp"
-#include "pena/grid/bent_scan.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/ros_map.hpp"
 #include "pena/io/trajectory_io.hpp"
@@ -119,11 +118,11 @@ class PoseFeeder {
       return;
     }
     std::optional<sensors::LaserScan> level;
-    if (run_.reference) {
-      if (const auto floor = grid::BentScanFloorLine(*run_.reference, *scan, *pose, {})) {
+    if (run_.reference && run_.leveller) {
+      if (const auto floor = run_.leveller->FloorLineOf(*run_.reference, *scan, *pose)) {
         ++run_.bent_scans;
         if (args_.bent_scans == "drop") return;
-        level = grid::LevelBentScan(*scan, *floor, {});
+        level = run_.leveller->Level(*scan, *floor);
         scan = &*level;
       }
     }
@@ -167,6 +166,7 @@ void RunMap(const MapArgs& args) {
   map_options.refit_band_m = args.refit_band_m;
   map_options.absorb_distance_m = args.absorb_distance_m;
   run.map = line_map::LineMap(map_options);
+  if (args.bent_scans != "off") run.leveller.emplace();  // options checked before the first pass
   if (!args.trajectory.empty()) {
     trajectory = io::ReadTum(args.trajectory);
     if (trajectory.empty()) throw std::runtime_error(args.trajectory + ": no poses");

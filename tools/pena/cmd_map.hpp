@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pena/geometry/trajectory.hpp"
+#include "pena/grid/bent_scan.hpp"
 #include "pena/grid/grid_image.hpp"
 #include "pena/grid/local_grid.hpp"
 #include "pena/grid/occupancy_grid.hpp"
@@ -57,6 +58,7 @@ struct MapRun {
   long refused = 0;  // Insert said no: pose not finite or grid too large
   // --bent-scans: the first pass's grid, against which the second judges each scan.
   std::optional<grid::OccupancyGrid> reference;
+  std::optional<grid::BentScanLeveller> leveller;  // --bent-scans: judges scans against reference
   long bent_scans = 0;  // --bent-scans: scans the second pass found bent
   double wall_s = 0.0;
 };

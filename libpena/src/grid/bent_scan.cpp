@@ -35,14 +35,16 @@ void ValidateBentScanOptions(const BentScanOptions& o) {
           "in [0, 1)", o.floor_band);
 }
 
-std::optional<FloorLine> BentScanFloorLine(const OccupancyGrid& reference,
-                                           const sensors::LaserScan& scan,
-                                           const geometry::Pose2& world_from_laser,
-                                           const BentScanOptions& options) {
-  ValidateBentScanOptions(options);
+BentScanLeveller::BentScanLeveller(const BentScanOptions& options) : options_(options) {
+  ValidateBentScanOptions(options_);
+}
+
+std::optional<FloorLine> BentScanLeveller::FloorLineOf(
+    const OccupancyGrid& reference, const sensors::LaserScan& scan,
+    const geometry::Pose2& world_from_laser) const {
   const std::vector<Eigen::Vector2d> ends_m =
-      reference.FreeEnds(scan, world_from_laser, options.free_log_odds);
-  if (static_cast<int>(ends_m.size()) < options.min_free_ends) return std::nullopt;
+      reference.FreeEnds(scan, world_from_laser, options_.free_log_odds);
+  if (static_cast<int>(ends_m.size()) < options_.min_free_ends) return std::nullopt;
   // Total least squares: the line through the centroid along the principal axis.
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
   for (const Eigen::Vector2d& p : ends_m) centroid += p;
@@ -61,30 +63,30 @@ std::optional<FloorLine> BentScanFloorLine(const OccupancyGrid& reference,
     normal = -normal;
     distance_m = -distance_m;
   }
-  if (distance_m < options.min_ahead_m || distance_m > options.max_ahead_m) return std::nullopt;
+  if (distance_m < options_.min_ahead_m || distance_m > options_.max_ahead_m) return std::nullopt;
   // The floor seen by a tilted plane lies on one line; scattered free ends are something else
   // (people, a door, a pose error).
   std::vector<double> residuals_m;
   residuals_m.reserve(ends_m.size());
   for (const Eigen::Vector2d& p : ends_m) residuals_m.push_back(std::abs(normal.dot(p) - distance_m));
   std::nth_element(residuals_m.begin(), residuals_m.begin() + residuals_m.size() / 2, residuals_m.end());
-  if (residuals_m[residuals_m.size() / 2] > options.max_spread * distance_m) return std::nullopt;
+  if (residuals_m[residuals_m.size() / 2] > options_.max_spread * distance_m) return std::nullopt;
   return FloorLine{normal, distance_m};
 }
 
-sensors::LaserScan LevelBentScan(const sensors::LaserScan& scan, const FloorLine& floor,
-                                 const BentScanOptions& options) {
+sensors::LaserScan BentScanLeveller::Level(const sensors::LaserScan& scan,
+                                           const FloorLine& floor) const {
   sensors::LaserScan level = scan;
   if (!(floor.distance_m > 0.0)) return level;
   // The scan reports the slant range, so the floor's returns r (cos a, sin a) lie on the line at
   // h / sin(tilt) (a: beam angle from the tilt's normal; the beam falls by r sin(tilt) cos a).
-  const double sin_tilt = std::min(options.laser_height_m / floor.distance_m, 1.0);
+  const double sin_tilt = std::min(options_.laser_height_m / floor.distance_m, 1.0);
   for (std::size_t i = 0; i < level.ranges_m.size(); ++i) {
     if (!level.IsReturn(i)) continue;
     const double angle_rad = level.BeamAngle(i);
     const double towards = floor.normal.x() * std::cos(angle_rad) + floor.normal.y() * std::sin(angle_rad);
     const double range_m = level.ranges_m[i];
-    if (range_m * towards >= (1.0 - options.floor_band) * floor.distance_m) {
+    if (range_m * towards >= (1.0 - options_.floor_band) * floor.distance_m) {
       level.ranges_m[i] = std::numeric_limits<float>::quiet_NaN();  // the floor, not a wall
       continue;
     }

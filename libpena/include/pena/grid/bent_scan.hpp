@@ -21,7 +21,7 @@ struct BentScanOptions {
   double min_ahead_m = 1.0;       // the line they lie on must be [min, max] from the laser:
   double max_ahead_m = 8.5;       // 8.5 m is a tilt above 8 deg at 1.2 m (walls >= 1 % too far)
   double max_spread = 0.1;        // their median distance to that line / its distance
-  // LevelBentScan: the laser's height above the floor (a firefighter's chest, as the odometry's
+  // Level: the laser's height above the floor (a firefighter's chest, as the odometry's
   // tilt_laser_height_m), which turns the floor line's distance into the tilt.
   double laser_height_m = 1.2;
   double floor_band = 0.07;  // returns within this share of the floor line's distance: floor
@@ -37,18 +37,29 @@ struct FloorLine {
 // Throws std::invalid_argument naming the field.
 void ValidateBentScanOptions(const BentScanOptions& options);
 
-// The line along which the scan met the floor or ceiling when `reference` (a grid of the same
-// walk) shows it bent, else nullopt.
-std::optional<FloorLine> BentScanFloorLine(const OccupancyGrid& reference,
-                                          const sensors::LaserScan& scan,
-                                          const geometry::Pose2& world_from_laser,
-                                          const BentScanOptions& options);
+// Judges scans against a grid of the same walk and levels the bent ones. The options are checked
+// once, by the constructor.
+class BentScanLeveller {
+ public:
+  // Throws std::invalid_argument naming the field (ValidateBentScanOptions).
+  explicit BentScanLeveller(const BentScanOptions& options = {});
 
-// The scan as a level laser would have measured it: the tilt is asin(laser_height_m /
-// floor distance) about the floor line's direction; each range becomes its horizontal part,
-// r sqrt(1 - (cos(angle to the line's normal) sin(tilt))^2), and the returns at the floor line
-// (within floor_band of its distance) become NaN (ignored: neither hit nor free space).
-sensors::LaserScan LevelBentScan(const sensors::LaserScan& scan, const FloorLine& floor,
-                                 const BentScanOptions& options);
+  // The line along which the scan met the floor or ceiling when `reference` (a grid of the same
+  // walk) shows it bent, else nullopt. world_from_laser: the laser's pose in the grid's frame.
+  std::optional<FloorLine> FloorLineOf(const OccupancyGrid& reference,
+                                       const sensors::LaserScan& scan,
+                                       const geometry::Pose2& world_from_laser) const;
+
+  // The scan as a level laser would have measured it: the tilt is asin(laser_height_m /
+  // floor distance) about the floor line's direction; each range becomes its horizontal part,
+  // r sqrt(1 - (cos(angle to the line's normal) sin(tilt))^2), and the returns at the floor line
+  // (within floor_band of its distance) become NaN (ignored: neither hit nor free space).
+  sensors::LaserScan Level(const sensors::LaserScan& scan, const FloorLine& floor) const;
+
+  const BentScanOptions& options() const { return options_; }
+
+ private:
+  BentScanOptions options_;
+};
 
 }  // namespace pena::grid

@@ -1,0 +1,83 @@
+#pragma once
+// Shared between the files of `pena localise` (cmd_localise.cpp: options and the run over the
+// log; cmd_localise_output.cpp: trajectory, status.csv, summary.json and the comparison with a
+// simulation's truth; cmd_localise_picture.cpp: localisation.png).
+
+#include <filesystem>
+#include <numbers>
+#include <opencv2/core/mat.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pena/geometry/segment2.hpp"
+#include "pena/geometry/trajectory.hpp"
+#include "pena/io/log_source.hpp"
+#include "pena/localisation/localisation_chain.hpp"
+
+namespace pena::cli::localise {
+
+inline constexpr double kDeg = std::numbers::pi / 180.0;
+
+struct LocaliseArgs {
+  std::string log, map, out, start, map_transform;
+  double map_scale = 1.0;
+  bool global = false;
+  bool every_scan = false;
+  bool quiet = false;
+  io::ReadOptions read;
+  std::vector<std::string> settings;  // --set NAME=VALUE (numeric plan-matching options, for sweeps)
+};
+
+// Everything the run produced.
+struct Run {
+  std::vector<localisation::LocalisedPose> poses;
+  std::vector<localisation::MapCorrection> rounds;
+  std::optional<localisation::GlobalResult> global;  // the one that anchored the start
+  double global_stamp_s = 0.0;
+  int global_attempts = 0;
+  std::string start_source;
+  long records = 0;
+  double wall_s = 0.0;
+};
+
+// Errors against a simulated mission's truth.tum: inside the plan's box (the mapped part) and
+// the recovery after each re-entry from outside it.
+struct TruthErrors {
+  long in_map = 0, outside = 0;
+  double in_map_rms_m = 0.0, in_map_heading_rms_deg = 0.0;  // excluding 5 m after re-entries
+  double all_in_map_rms_m = 0.0;                            // including them
+  std::vector<double> recovery_m;  // per re-entry: walked metres until the error is < 0.15 m
+};
+
+// The rounds of the status timeline, counted.
+struct Counts {
+  long rounds = 0, accepted = 0, reacquired = 0, outside_rounds = 0, outside_scans = 0;
+  double mean_confidence = 0.0;  // over accepted rounds
+};
+
+// The anchored poses of the run, in the plan's frame.
+geometry::Trajectory Trajectory(const Run& run);
+
+// DIR/status.csv: one line per plan-matching round (the status timeline).
+void WriteStatusCsv(const std::filesystem::path& path, const Run& run);
+
+// The estimate against truth.tum, inside the plan's bounding box and at re-entries into it.
+TruthErrors CompareWithTruth(const geometry::Trajectory& estimate, const geometry::Trajectory& truth,
+                             const std::vector<geometry::Segment2>& plan);
+
+// The rounds, acceptances, re-acquisitions and stretches outside the plan of the run.
+Counts CountRun(const Run& run);
+
+// DIR/summary.json: counts, the global start's hypotheses and the errors against truth.
+void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, const Run& run,
+                  const std::optional<TruthErrors>& truth);
+
+// truth.tum next to a simulated entity's native log, if there is one (else empty).
+geometry::Trajectory TruthNextTo(const io::LogSource& source);
+
+// localisation.png: the plan, the path on it, stretches outside it, re-acquisitions, the true path.
+cv::Mat Picture(const Run& run, const std::vector<geometry::Segment2>& plan, const geometry::Trajectory& truth,
+                const std::string& title);
+
+}  // namespace pena::cli::localise
