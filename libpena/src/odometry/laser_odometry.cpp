@@ -297,6 +297,10 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
   if (held && result.score < options.keyframe_turn_min_score) {
     CommitHeld(out);
     prior = out.world_from_prior;
+    // A failed match below restarts the local map at `estimate`: it must be the prior anchored
+    // at the committed keyframe, not the one anchored at the keyframe before the hold (office
+    // seed 3 at 144.25 s: that one carried a poor turn keyframe's +6 deg into the new map).
+    estimate = prior;
     result = Search(points, prior, out);
   }
   if (result.score < options.min_score) {
