@@ -80,8 +80,10 @@ struct Trial {
   geometry::Pose2 leader_truth;
 };
 
-// PENA_BENCH_SET=name=value,...: tracker options for comparing variants on the same starts.
-void ApplySettings(localisation::GlobalTrackerOptions& o) {
+// PENA_BENCH_SET=name=value,...: tracker options (and the chain's compass_tolerance_deg) for
+// comparing variants on the same starts.
+void ApplySettings(localisation::LocalisationChainOptions& chain) {
+  localisation::GlobalTrackerOptions& o = chain.tracker;
   const char* list = std::getenv("PENA_BENCH_SET");
   if (!list) return;
   std::string text(list);
@@ -102,6 +104,7 @@ void ApplySettings(localisation::GlobalTrackerOptions& o) {
     else if (name == "min_keyframes") o.min_keyframes = static_cast<int>(value);
     else if (name == "through_weight") o.through_weight = value;
     else if (name == "final_keyframes") o.final_keyframes = static_cast<int>(value);
+    else if (name == "compass_tolerance_deg") chain.compass_tolerance_rad = value * kDeg;
     else {
       std::fprintf(stderr, "PENA_BENCH_SET: unknown tracker option %s\n", name.c_str());
       std::exit(2);
@@ -133,7 +136,7 @@ Trial Run(const sim::EntityRecording& entity, const std::vector<geometry::Segmen
   const bool trace = std::getenv("PENA_BENCH_TRACE") != nullptr;
   localisation::LocalisationChainOptions options;
   options.global_start = true;
-  ApplySettings(options.tracker);
+  ApplySettings(options);
   const sensors::GroundTruth& first_truth = std::get<sensors::GroundTruth>(entity.records[start]);
   trial.start_truth = first_truth.world_from_body;
   const std::clock_t cpu_start = std::clock();

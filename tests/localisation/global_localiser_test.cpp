@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "office_plan.hpp"
@@ -63,6 +65,38 @@ TEST(GlobalLocaliser, FitMergedPinsAPoseAlongTheCorridor) {
   EXPECT_NEAR(geometry::NormalizeAngle(fitted.map_from_body.theta_rad - latest.theta_rad), 0.0, 0.3 * kDeg);
   EXPECT_GT(fitted.score, 0.9);
   EXPECT_EQ(localiser.FitMerged({}, latest).score, 0.0);  // nothing to fit: the guess, score 0
+}
+
+// In the corridor one scan fits the corridor seen the other way round too. With a heading bound
+// (the compass) no hypothesis lies outside it, and the true pose is still one of them.
+TEST(GlobalLocaliser, HeadingBoundKeepsTheCorridorTheRightWayRound) {
+  const sim::Scenario office = testing::OfficeScenario();
+  const VirtualScanner truth_scanner(office.walls);
+  const GlobalLocaliser localiser(*office.apriori);
+  const geometry::Pose2 truth{12.0, 14.0, 0.0};
+  const auto scan = truth_scanner.Scan(truth, testing::OfficeLaser(), 361);
+  const auto reversed = [&](const PoseHypothesis& h) {
+    return std::abs(geometry::NormalizeAngle(h.map_from_body.theta_rad - truth.theta_rad)) > 90.0 * kDeg;
+  };
+  const GlobalResult all = localiser.Localise(scan, 30);
+  EXPECT_TRUE(std::any_of(all.hypotheses.begin(), all.hypotheses.end(), reversed));
+  const GlobalResult bounded = localiser.Localise(scan, 30, HeadingBound{5.0 * kDeg, 30.0 * kDeg});
+  ASSERT_FALSE(bounded.hypotheses.empty());
+  for (const PoseHypothesis& h : bounded.hypotheses) {
+    EXPECT_LE(std::abs(geometry::NormalizeAngle(h.map_from_body.theta_rad - 5.0 * kDeg)), 30.0 * kDeg);
+  }
+  // One scan there is ambiguous along the corridor (doors every ~6 m): the true place is among
+  // the hypotheses, not necessarily the best.
+  EXPECT_TRUE(std::any_of(bounded.hypotheses.begin(), bounded.hypotheses.end(),
+                          [&](const PoseHypothesis& h) { return SamePlace(h.map_from_body, truth); }));
+  // A bound across the +/-180 deg seam: the same corridor seen walking west.
+  const geometry::Pose2 west{12.0, 14.0, 180.0 * kDeg};
+  const GlobalResult seam =
+      localiser.Localise(truth_scanner.Scan(west, testing::OfficeLaser(), 361), 30, HeadingBound{-175.0 * kDeg, 30.0 * kDeg});
+  ASSERT_FALSE(seam.hypotheses.empty());
+  for (const PoseHypothesis& h : seam.hypotheses) {
+    EXPECT_LE(std::abs(geometry::NormalizeAngle(h.map_from_body.theta_rad + 175.0 * kDeg)), 30.0 * kDeg);
+  }
 }
 
 TEST(GlobalLocaliser, EmptyScanGivesNoHypothesis) {

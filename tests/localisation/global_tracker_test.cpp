@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 #include <optional>
 
@@ -92,6 +93,33 @@ TEST(GlobalTracker, DecidesNothingOnAWalkIntoTheUnmappedWestWing) {
   EXPECT_FALSE(WalkIntoTheWestWing({}).decided.has_value());
 }
 
+// With the odometry frame's heading known to within 30 deg (a compass; here 10 deg off), every
+// followed hypothesis keeps to it, and the walk west still settles on the true pose.
+TEST(GlobalTracker, HeadingToleranceKeepsEveryTrackWithinIt) {
+  const sim::Scenario office = testing::OfficeScenario();
+  const VirtualScanner truth_scanner(office.walls);
+  const GlobalLocaliser localiser(*office.apriori);
+  GlobalTrackerOptions options;
+  options.odom_heading_tolerance_rad = 30.0 * kDeg;
+  GlobalTracker tracker(localiser, options);
+  const geometry::Pose2 odom_from_map{3.0, -7.0, 10.0 * kDeg};
+  std::optional<PoseHypothesis> decided;
+  geometry::Pose2 truth;
+  for (int step = 0; step < 16 && !decided; ++step) {
+    truth = {40.5 - 0.5 * step, 14.0, 180.0 * kDeg};
+    const geometry::Pose2 odom_from_body = geometry::Compose(odom_from_map, truth);
+    const TrackerUpdate update = tracker.Update(truth_scanner.Scan(truth, testing::OfficeLaser(), 361), odom_from_body);
+    for (const PoseHypothesis& h : update.ranked.hypotheses) {
+      EXPECT_LE(std::abs(geometry::NormalizeAngle(h.map_from_body.theta_rad - odom_from_body.theta_rad)), 30.5 * kDeg);
+    }
+    decided = update.decided;
+  }
+  ASSERT_TRUE(decided.has_value());
+  EXPECT_NEAR(decided->map_from_body.x_m, truth.x_m, 0.1);
+  EXPECT_NEAR(decided->map_from_body.y_m, truth.y_m, 0.1);
+  EXPECT_NEAR(geometry::NormalizeAngle(decided->map_from_body.theta_rad - truth.theta_rad), 0.0, 1.0 * kDeg);
+}
+
 TEST(GlobalTrackerOptions, RejectsBadValues) {
   const GlobalLocaliser localiser({{{0.0, 0.0}, {5.0, 0.0}}});
   GlobalTrackerOptions options;
@@ -102,6 +130,9 @@ TEST(GlobalTrackerOptions, RejectsBadValues) {
   EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
   options = {};
   options.final_keyframes = -1;
+  EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
+  options = {};
+  options.odom_heading_tolerance_rad = -0.1;
   EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
 }
 

@@ -47,11 +47,12 @@ geometry::Pose2 ParsePose(const std::string& text, const std::string& option) {
 }
 
 // Applies --set NAME=VALUE to the plan-matching options (names as in MapLocaliserOptions) and,
-// prefixed "odometry.", to the odometry underneath (the names of `pena odometry --set`);
+// prefixed "odometry.", to the odometry underneath (the names of `pena odometry --set`), and
+// global.compass_tolerance_deg (LocalisationChainOptions::compass_tolerance_rad, in degrees);
 // integer options are rounded; unknown names are errors. The options are validated by
 // MapLocaliser's constructor as usual.
-void ApplySettings(const std::vector<std::string>& settings, localisation::MapLocaliserOptions& o,
-                   odometry::LaserOdometryOptions& odometry) {
+void ApplySettings(const std::vector<std::string>& settings, localisation::LocalisationChainOptions& chain) {
+  localisation::MapLocaliserOptions& o = chain.map;
   constexpr std::string_view kOdometry = "odometry.";
   std::vector<std::string> odometry_settings;
   const std::map<std::string, double*> doubles = {
@@ -76,7 +77,9 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::MapLo
       continue;
     }
     const auto [name, value] = ParseSetting(setting);
-    if (name == "window.size_xy_m") {
+    if (name == "global.compass_tolerance_deg") {
+      chain.compass_tolerance_rad = value * kDeg;
+    } else if (name == "window.size_xy_m") {
       o.window.size_x_m = o.window.size_y_m = value;
     } else if (name == "max_window.size_xy_m") {
       o.max_window.size_x_m = o.max_window.size_y_m = value;
@@ -88,7 +91,7 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::MapLo
       throw std::runtime_error("--set: unknown option '" + name + "' (see docs/localisation.md)");
     }
   }
-  ApplyOdometrySettings(odometry_settings, odometry);
+  ApplyOdometrySettings(odometry_settings, chain.odometry);
 }
 
 // The plan in the mission frame: read (CSV, SVG or DXF), scaled to metres, then moved by
@@ -119,7 +122,7 @@ Run RunChain(const LocaliseArgs& args, io::LogSource& source, std::vector<geomet
   localisation::LocalisationChainOptions options;
   options.global_start = args.global;
   options.map.every_scan = args.every_scan;
-  ApplySettings(args.settings, options.map, options.odometry);
+  ApplySettings(args.settings, options);
   const double start_stamp_s = read_ahead.empty() ? 0.0 : sensors::StampOf(read_ahead.front());
   localisation::LocalisationChain chain(options, source.description().kind.value_or(sensors::EntityKind::kRobot),
                                         std::move(plan), start, start_stamp_s);

@@ -100,14 +100,25 @@ struct GlobalLocaliser::Impl {
 
   // Best coarse pose of every tile and heading sector (branch and bound), the best
   // refine_candidates of them by coarse score.
-  std::vector<PoseHypothesis> CoarseCandidates(const scan_matching::Points2& scan, long& scored) const {
-    const double sector_rad = 2.0 * std::numbers::pi / options.heading_sectors;
+  // With a heading bound only its interval is searched, in as many sectors as it spans (at most
+  // heading_sectors' width each).
+  std::vector<PoseHypothesis> CoarseCandidates(const scan_matching::Points2& scan, long& scored,
+                                               const std::optional<HeadingBound>& bound) const {
+    const double full_sector_rad = 2.0 * std::numbers::pi / options.heading_sectors;
+    double first_rad = -std::numbers::pi, span_rad = 2.0 * std::numbers::pi;
+    int sectors = options.heading_sectors;
+    if (bound && bound->tolerance_rad < std::numbers::pi) {
+      first_rad = bound->heading_rad - bound->tolerance_rad;
+      span_rad = 2.0 * bound->tolerance_rad;
+      sectors = std::max(1, static_cast<int>(std::ceil(span_rad / full_sector_rad - 1e-9)));
+    }
+    const double sector_rad = span_rad / sectors;
     const scan_matching::SearchWindow window{options.tile_size_m, options.tile_size_m, sector_rad,
                                              options.coarse_step_xy_m, options.coarse_step_theta_rad};
     std::vector<PoseHypothesis> candidates;
     for (const geometry::Pose2& tile : tile_centres) {
-      for (int sector = 0; sector < options.heading_sectors; ++sector) {
-        const geometry::Pose2 centre{tile.x_m, tile.y_m, -std::numbers::pi + (sector + 0.5) * sector_rad};
+      for (int sector = 0; sector < sectors; ++sector) {
+        const geometry::Pose2 centre{tile.x_m, tile.y_m, first_rad + (sector + 0.5) * sector_rad};
         const scan_matching::MatchResult match = coarse.MatchBranchAndBound(scan, centre, window);
         scored += match.candidates_scored;
         if (!match.converged) continue;
@@ -171,7 +182,7 @@ GlobalResult GlobalLocaliser::Localise(const scan_matching::Points2& scan_body) 
   scan_matching::Points2 scan = scan_body;
   std::erase_if(scan, [&](const Eigen::Vector2d& p) { return p.norm() > impl_->options.max_range_m; });
   if (scan.empty() || impl_->reference.empty()) return result;
-  for (const PoseHypothesis& candidate : impl_->CoarseCandidates(scan, result.candidates_scored)) {
+  for (const PoseHypothesis& candidate : impl_->CoarseCandidates(scan, result.candidates_scored, std::nullopt)) {
     PoseHypothesis refined = impl_->Refine(scan, candidate, impl_->options.fine_window);
     refined.agreement = refined.score;
     result.hypotheses.push_back(refined);
@@ -203,12 +214,22 @@ PoseHypothesis GlobalLocaliser::FitMerged(const scan_matching::Points2& points_b
 }
 
 GlobalResult GlobalLocaliser::Localise(const sensors::LaserScan& scan, int max_hypotheses) const {
+  return Localise(scan, max_hypotheses, std::nullopt);
+}
+
+GlobalResult GlobalLocaliser::Localise(const sensors::LaserScan& scan, int max_hypotheses,
+                                       const std::optional<HeadingBound>& bound) const {
   scan_matching::Points2 points = scan_matching::ScanToPoints(scan, impl_->options.min_range_m);
   std::erase_if(points, [&](const Eigen::Vector2d& p) { return p.norm() > impl_->options.max_range_m; });
   GlobalResult result;
   if (points.empty() || impl_->reference.empty()) return result;
-  for (const PoseHypothesis& candidate : impl_->CoarseCandidates(points, result.candidates_scored)) {
+  for (const PoseHypothesis& candidate : impl_->CoarseCandidates(points, result.candidates_scored, bound)) {
     PoseHypothesis refined = impl_->Refine(points, candidate, impl_->options.fine_window);
+    // The refinement may step a little past the bound's edge: such a pose is outside it.
+    if (bound && std::abs(geometry::NormalizeAngle(refined.map_from_body.theta_rad - bound->heading_rad)) >
+                     bound->tolerance_rad) {
+      continue;
+    }
     refined.agreement = impl_->Agreement(scan, refined.map_from_body).fraction();
     result.hypotheses.push_back(refined);
   }

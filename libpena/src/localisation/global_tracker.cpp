@@ -28,6 +28,8 @@ void Validate(const GlobalTrackerOptions& o) {
   Require(o.search_every_m > 0.0, "search_every_m", "> 0 m", o.search_every_m);
   Require(o.through_weight >= 0.0, "through_weight", ">= 0", o.through_weight);
   Require(o.final_keyframes >= 0, "final_keyframes", ">= 0", o.final_keyframes);
+  Require(o.odom_heading_tolerance_rad >= 0.0, "odom_heading_tolerance_rad", ">= 0 rad",
+          o.odom_heading_tolerance_rad);
 }
 
 bool ByEvidence(const Track& a, const Track& b) { return a.evidence_beams > b.evidence_beams; }
@@ -43,7 +45,11 @@ GlobalTracker::GlobalTracker(const GlobalLocaliser& localiser, const GlobalTrack
 void GlobalTracker::Search(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body) {
   ++searches_;
   since_search_m_ = 0.0;
-  const GlobalResult result = localiser_->Localise(scan, options_.max_tracks);
+  std::optional<HeadingBound> bound;
+  if (options_.odom_heading_tolerance_rad > 0.0) {
+    bound = HeadingBound{odom_from_body.theta_rad, options_.odom_heading_tolerance_rad};
+  }
+  const GlobalResult result = localiser_->Localise(scan, options_.max_tracks, bound);
   const geometry::Pose2 body_from_odom = geometry::Inverse(odom_from_body);
   for (const PoseHypothesis& h : result.hypotheses) {
     const bool followed = std::any_of(tracks_.begin(), tracks_.end(), [&](const Track& t) {
@@ -78,7 +84,10 @@ void GlobalTracker::Prune() {
     const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const Track& k) {
       return SamePlace(k.map_from_body, t.map_from_body);
     });
-    if (!duplicate) kept.push_back(t);
+    // Verify's small turns at each keyframe can add up past the heading bound.
+    const bool turned = options_.odom_heading_tolerance_rad > 0.0 &&
+                        std::abs(geometry::NormalizeAngle(t.map_from_odom.theta_rad)) > options_.odom_heading_tolerance_rad;
+    if (!duplicate && !turned) kept.push_back(t);
   }
   if (!kept.empty()) {
     const double floor = kept.front().evidence_beams - options_.drop_margin_beams;

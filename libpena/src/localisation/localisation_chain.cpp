@@ -1,6 +1,9 @@
 #include "pena/localisation/localisation_chain.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace pena::localisation {
 namespace {
@@ -10,6 +13,33 @@ namespace {
 odometry::LaserOdometryOptions UnknownPhase(odometry::LaserOdometryOptions options) {
   options.dead_reckoning.heading.compass_noise_rad = 1e6;
   return options;
+}
+
+// The unknown phase's odometry started at the first compass reading keeps the compass. Its
+// initial spread allows for a disturbed first reading (up to the tolerance), so that the next
+// readings can still pull the heading instead of being gated out.
+odometry::LaserOdometryOptions CompassPhase(odometry::LaserOdometryOptions options, double tolerance_rad) {
+  auto& heading = options.dead_reckoning.heading;
+  heading.initial_heading_sigma_rad = std::max(heading.initial_heading_sigma_rad, tolerance_rad / 3.0);
+  return options;
+}
+
+// A person whose motion prior is the gyro + compass dead reckoning carries a compass.
+bool HasCompass(const odometry::LaserOdometryOptions& options, sensors::EntityKind kind) {
+  const auto prior = options.motion_prior;
+  return kind == sensors::EntityKind::kHuman &&
+         (prior == odometry::MotionPrior::kAuto || prior == odometry::MotionPrior::kDeadReckoning);
+}
+
+void Validate(const LocalisationChainOptions& o) {
+  if (!(o.compass_tolerance_rad >= 0.0) || !std::isfinite(o.compass_tolerance_rad)) {
+    throw std::invalid_argument("localisation_chain.compass_tolerance_rad must be >= 0 rad, got " +
+                                std::to_string(o.compass_tolerance_rad));
+  }
+  if (!(o.compass_wait_s >= 0.0) || !std::isfinite(o.compass_wait_s)) {
+    throw std::invalid_argument("localisation_chain.compass_wait_s must be >= 0 s, got " +
+                                std::to_string(o.compass_wait_s));
+  }
 }
 
 }  // namespace
@@ -22,6 +52,8 @@ struct LocalisationChain::Impl {
   std::unique_ptr<GlobalLocaliser> global;  // only while the start is still unknown
   std::unique_ptr<GlobalTracker> tracker;
   bool anchored = true;
+  double start_stamp_s = 0.0;
+  bool waiting_for_compass = false;  // unknown start with a compass: no scan used before it
 
   // Unknown start: hypotheses are followed over keyframes until one wins (section 4 needs a known
   // start; this supplies it). Then the odometry restarts at the winner on the plan, with the
@@ -38,11 +70,32 @@ struct LocalisationChain::Impl {
     tracker.reset();
     global.reset();
   }
+
+  // Before the first scan is used: the first compass reading gives the odometry frame the
+  // mission frame's heading, and the tracker keeps to headings near it. Returns false for a scan
+  // that must wait for the compass.
+  bool AwaitCompass(const sensors::SensorRecord& record) {
+    if (const auto* compass = std::get_if<sensors::CompassSample>(&record)) {
+      odometry = odometry::LaserOdometry(CompassPhase(options.odometry, options.compass_tolerance_rad), kind,
+                                         geometry::Pose2{0.0, 0.0, compass->heading_rad}, compass->stamp_s);
+      GlobalTrackerOptions bounded = options.tracker;
+      bounded.odom_heading_tolerance_rad = options.compass_tolerance_rad;
+      tracker = std::make_unique<GlobalTracker>(*global, bounded);
+      waiting_for_compass = false;
+      return true;
+    }
+    const auto* scan = std::get_if<sensors::LaserScan>(&record);
+    if (!scan) return true;
+    // No compass after all: every heading, with the odometry fed since the start (as with 0).
+    if (scan->stamp_s - start_stamp_s > options.compass_wait_s) waiting_for_compass = false;
+    return !waiting_for_compass;
+  }
 };
 
 LocalisationChain::LocalisationChain(const LocalisationChainOptions& options,
                                      sensors::EntityKind kind, std::vector<geometry::Segment2> plan,
                                      const geometry::Pose2& map_from_start, double start_stamp_s) {
+  Validate(options);
   const bool unknown = options.global_start;
   std::unique_ptr<GlobalLocaliser> global;
   std::unique_ptr<GlobalTracker> tracker;
@@ -55,7 +108,8 @@ LocalisationChain::LocalisationChain(const LocalisationChainOptions& options,
       odometry::LaserOdometry(unknown ? UnknownPhase(options.odometry) : options.odometry, kind,
                               unknown ? geometry::Pose2{} : map_from_start, start_stamp_s),
       MapLocaliser(options.map, std::move(plan), geometry::Pose2{}), std::move(global), std::move(tracker),
-      !unknown});
+      !unknown, start_stamp_s,
+      unknown && options.compass_tolerance_rad > 0.0 && HasCompass(options.odometry, kind)});
 }
 
 LocalisationChain::~LocalisationChain() = default;
@@ -63,6 +117,7 @@ LocalisationChain::LocalisationChain(LocalisationChain&&) noexcept = default;
 LocalisationChain& LocalisationChain::operator=(LocalisationChain&&) noexcept = default;
 
 std::optional<LocalisedPose> LocalisationChain::Add(const sensors::SensorRecord& record) {
+  if (impl_->waiting_for_compass && !impl_->AwaitCompass(record)) return std::nullopt;
   std::optional<odometry::OdometryEstimate> estimate = impl_->odometry.Add(record);
   if (!estimate) return std::nullopt;
   const auto& scan = std::get<sensors::LaserScan>(record);

@@ -9,6 +9,7 @@
 // the look-alike stretches of a corridor with evenly spaced doors.
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "pena/geometry/pose2.hpp"
@@ -51,6 +52,13 @@ struct GlobalLocaliserOptions {
   double agreement_tolerance_m = 0.3;  // a beam agrees when real and virtual range differ less
 };
 
+// Headings a whole-plan search may return: within tolerance_rad of heading_rad (map frame), e.g.
+// the compass heading of a firefighter. Without one every heading is searched.
+struct HeadingBound {
+  double heading_rad = 0.0;
+  double tolerance_rad = 0.0;  // > 0; pi or more: every heading
+};
+
 // One candidate pose of the body on the plan.
 struct PoseHypothesis {
   geometry::Pose2 map_from_body;
@@ -91,6 +99,10 @@ class GlobalLocaliser {
   GlobalResult Localise(const sensors::LaserScan& scan) const;
   // The same keeping up to `max_hypotheses` (instead of the option's) for hypothesis tracking.
   GlobalResult Localise(const sensors::LaserScan& scan, int max_hypotheses) const;
+  // The same searching only headings within `bound` (fewer heading sectors: faster, and the
+  // corridor seen the other way round is never a hypothesis); nullopt: every heading.
+  GlobalResult Localise(const sensors::LaserScan& scan, int max_hypotheses,
+                        const std::optional<HeadingBound>& bound) const;
   // One hypothesis checked at a new scan: fine match in verify_window around `map_from_body_guess`,
   // then beam agreement at the refined pose.
   PoseHypothesis Verify(const sensors::LaserScan& scan, const geometry::Pose2& map_from_body_guess) const;

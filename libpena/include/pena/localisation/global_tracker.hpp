@@ -42,6 +42,11 @@ struct GlobalTrackerOptions {
   int final_keyframes = 0;
   double drop_margin_beams = 400.0;  // hypotheses trailing the leader by more are dropped
   double search_every_m = 2.0;       // a new whole-plan search after this many metres walked
+  // The odometry frame's heading is the map's to within this (a compass keeps the frame's
+  // heading absolute; LocalisationChain starts it at the compass heading): searches look only at
+  // headings this close to the odometry's, and tracks whose placement turns the frame by more
+  // are dropped. 0: no heading is known, every heading is searched.
+  double odom_heading_tolerance_rad = 0.0;
 };
 
 // One followed hypothesis.

@@ -25,8 +25,17 @@ struct LocalisationChainOptions {
   // Unknown start: the odometry runs in a frame of its own while global hypotheses are followed
   // over the first keyframes (GlobalTracker); when one wins, the odometry restarts at it on the
   // plan. In the unknown phase the compass is not used (its absolute heading does not hold in a
-  // frame started at an arbitrary heading).
+  // frame started at an arbitrary heading) ...
   bool global_start = false;
+  // ... unless this is > 0 and the entity has a compass (a person whose motion prior is the
+  // gyro + compass dead reckoning): then no scan is used before the first compass sample, the
+  // unknown phase's odometry starts at the compass heading and keeps the compass, and the whole-
+  // plan searches and the followed hypotheses keep to headings within this of the odometry's
+  // (GlobalTrackerOptions::odom_heading_tolerance_rad); it allows for a compass disturbed where
+  // the walk starts. Without a compass sample within compass_wait_s of the start, or for a robot,
+  // every heading is searched as with 0.
+  double compass_tolerance_rad = 0.0;
+  double compass_wait_s = 1.0;
   GlobalLocaliserOptions global;
   GlobalTrackerOptions tracker;
 };

@@ -1,0 +1,141 @@
+#include "pena/localisation/localisation_chain.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+
+#include "office_plan.hpp"
+#include "pena/sim/simulator.hpp"
+
+namespace pena::localisation {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// The simulated office mission (seed 1), as bench_global_localisation runs it.
+const sim::SimulationResult& OfficeMission() {
+  static const sim::SimulationResult mission = [] {
+    sim::SimulationOptions options;
+    options.seed = 1;
+    return sim::Simulator(options).Run(testing::OfficeScenario());
+  }();
+  return mission;
+}
+
+// Index of the ground truth record right before the first scan at or after `stamp_s`.
+std::size_t StartAt(const sim::EntityRecording& entity, double stamp_s) {
+  for (std::size_t i = 0; i + 1 < entity.records.size(); ++i) {
+    const auto* truth = std::get_if<sensors::GroundTruth>(&entity.records[i]);
+    if (truth && truth->stamp_s >= stamp_s && std::holds_alternative<sensors::LaserScan>(entity.records[i + 1])) return i;
+  }
+  throw std::runtime_error("no scan after the stamp");
+}
+
+LocalisationChainOptions UnknownStart(double compass_tolerance_rad) {
+  LocalisationChainOptions options;
+  options.global_start = true;
+  options.compass_tolerance_rad = compass_tolerance_rad;
+  return options;
+}
+
+// Runs the log from `start` with an unknown start until the chain anchors (at most `max_scans`);
+// returns the anchored pose and the true pose then.
+struct Anchor {
+  std::optional<geometry::Pose2> estimate;
+  geometry::Pose2 truth;
+};
+Anchor RunUntilAnchored(const LocalisationChainOptions& options, sensors::EntityKind kind, std::size_t start,
+                        int max_scans) {
+  const sim::EntityRecording& entity = OfficeMission().entities.front();
+  const sim::Scenario office = testing::OfficeScenario();
+  const auto& first = std::get<sensors::GroundTruth>(entity.records[start]);
+  LocalisationChain chain(options, kind, *office.apriori, geometry::Pose2{}, first.stamp_s);
+  Anchor anchor;
+  int scans = 0;
+  for (std::size_t i = start; i < entity.records.size() && scans < max_scans; ++i) {
+    if (const auto* t = std::get_if<sensors::GroundTruth>(&entity.records[i])) {
+      anchor.truth = t->world_from_body;
+      continue;
+    }
+    const auto pose = chain.Add(entity.records[i]);
+    if (!pose) continue;
+    ++scans;
+    if (pose->anchored) {
+      anchor.estimate = pose->map_from_body;
+      break;
+    }
+  }
+  return anchor;
+}
+
+// The unknown phase's odometry frame starts at the compass heading, so the odometry heading is
+// the mission frame's (walking west: 180 deg); without the compass tolerance it starts at 0.
+TEST(LocalisationChain, UnknownStartWithACompassStartsAtTheCompassHeading) {
+  const sim::EntityRecording& entity = OfficeMission().entities.front();
+  const sim::Scenario office = testing::OfficeScenario();
+  const std::size_t start = StartAt(entity, 3.0);
+  const auto& first = std::get<sensors::GroundTruth>(entity.records[start]);
+  for (const double tolerance_rad : {0.0, 30.0 * kDeg}) {
+    LocalisationChain chain(UnknownStart(tolerance_rad), entity.kind, *office.apriori, geometry::Pose2{}, first.stamp_s);
+    std::optional<LocalisedPose> pose;
+    for (std::size_t i = start + 1; i < entity.records.size() && !pose; ++i) pose = chain.Add(entity.records[i]);
+    ASSERT_TRUE(pose.has_value());
+    const double expected_rad = tolerance_rad > 0.0 ? first.world_from_body.theta_rad : 0.0;
+    EXPECT_NEAR(geometry::NormalizeAngle(pose->odometry.world_from_body.theta_rad - expected_rad), 0.0, 6.0 * kDeg)
+        << "tolerance " << tolerance_rad;
+  }
+}
+
+// A robot has no compass: the tolerance changes nothing (same estimates scan by scan).
+TEST(LocalisationChain, RobotWithoutCompassIsUnchangedByTheCompassTolerance) {
+  const sim::EntityRecording& entity = OfficeMission().entities.front();
+  const sim::Scenario office = testing::OfficeScenario();
+  const std::size_t start = StartAt(entity, 3.0);
+  const double stamp_s = std::get<sensors::GroundTruth>(entity.records[start]).stamp_s;
+  LocalisationChain without(UnknownStart(0.0), sensors::EntityKind::kRobot, *office.apriori, {}, stamp_s);
+  LocalisationChain with(UnknownStart(30.0 * kDeg), sensors::EntityKind::kRobot, *office.apriori, {}, stamp_s);
+  int scans = 0;
+  for (std::size_t i = start + 1; i < entity.records.size() && scans < 12; ++i) {
+    const auto a = without.Add(entity.records[i]);
+    const auto b = with.Add(entity.records[i]);
+    ASSERT_EQ(a.has_value(), b.has_value());
+    if (!a) continue;
+    ++scans;
+    EXPECT_EQ(a->map_from_body.x_m, b->map_from_body.x_m);
+    EXPECT_EQ(a->map_from_body.theta_rad, b->map_from_body.theta_rad);
+    EXPECT_EQ(a->global.has_value(), b->global.has_value());
+    if (a->global && b->global) {
+      EXPECT_EQ(a->global->hypotheses.size(), b->global->hypotheses.size());
+    }
+  }
+  EXPECT_EQ(scans, 12);
+}
+
+// The walk from the entrance west along the corridor anchors on the true pose with the compass
+// start (a plain corridor start: the bound must not lose what every heading finds).
+TEST(LocalisationChain, CompassStartAnchorsTheWalkFromTheEntrance) {
+  const sim::EntityRecording& entity = OfficeMission().entities.front();
+  const Anchor anchor = RunUntilAnchored(UnknownStart(30.0 * kDeg), entity.kind, StartAt(entity, 3.0), 400);
+  ASSERT_TRUE(anchor.estimate.has_value());
+  EXPECT_NEAR(anchor.estimate->x_m, anchor.truth.x_m, 0.3);
+  EXPECT_NEAR(anchor.estimate->y_m, anchor.truth.y_m, 0.3);
+  EXPECT_NEAR(geometry::NormalizeAngle(anchor.estimate->theta_rad - anchor.truth.theta_rad), 0.0, 3.0 * kDeg);
+}
+
+TEST(LocalisationChainOptions, RejectsBadValues) {
+  const sim::Scenario office = testing::OfficeScenario();
+  LocalisationChainOptions options = UnknownStart(-0.1);
+  EXPECT_THROW(LocalisationChain(options, sensors::EntityKind::kHuman, *office.apriori, {}, 0.0),
+               std::invalid_argument);
+  options = UnknownStart(0.5);
+  options.compass_wait_s = -1.0;
+  EXPECT_THROW(LocalisationChain(options, sensors::EntityKind::kHuman, *office.apriori, {}, 0.0),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pena::localisation
