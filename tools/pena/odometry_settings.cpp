@@ -15,10 +15,14 @@ std::map<std::string, double*> SettableOptions(odometry::LaserOdometryOptions& o
           {"keyframe_distance_m", &o.keyframe_distance_m},
           {"keyframe_angle_rad", &o.keyframe_angle_rad},
           {"keyframe_min_score", &o.keyframe_min_score},
+          {"local_map_pool_age_s", &o.local_map_pool_age_s},
+          {"local_map_place_radius_m", &o.local_map_place_radius_m},
           {"keyframe_turn_rate_rad_s", &o.keyframe_turn_rate_rad_s},
           {"heading_bound_rad", &o.heading_bound_rad},
           {"keyframe_turn_min_score", &o.keyframe_turn_min_score},
           {"keyframe_turn_min_interval_s", &o.keyframe_turn_min_interval_s},
+          {"frozen_odometry_min_turn_rad", &o.frozen_odometry_min_turn_rad},
+          {"frozen_odometry_min_move_m", &o.frozen_odometry_min_move_m},
           {"degenerate_eigen_ratio", &o.degenerate_eigen_ratio},
           {"degenerate_slide_ratio", &o.degenerate_slide_ratio},
           {"degenerate_max_slide_m", &o.degenerate_max_slide_m},
@@ -64,6 +68,10 @@ void ApplyOdometrySettings(const std::vector<std::string>& settings,
                            odometry::LaserOdometryOptions& o) {
   std::map<std::string, double*> doubles = SettableOptions(o);
   const std::map<std::string, int*> ints = {{"local_map_keyframes", &o.local_map_keyframes},
+                                            {"local_map_pool_keyframes",
+                                             &o.local_map_pool_keyframes},
+                                            {"local_map_recent_keyframes",
+                                             &o.local_map_recent_keyframes},
                                             {"min_match_points", &o.min_match_points},
                                             {"prior_gate_confirm", &o.prior_gate_confirm},
                                             {"prior_gate_confirm_gyro", &o.prior_gate_confirm_gyro},
@@ -75,7 +83,8 @@ void ApplyOdometrySettings(const std::vector<std::string>& settings,
                                              &o.timing_burst_window_scans}};
   const std::map<std::string, bool*> flags = {
       {"dead_reckoning.stride_calibration.enabled", &o.dead_reckoning.stride_calibration.enabled},
-      {"matcher.exact_refine_check", &o.matcher.exact_refine_check}};
+      {"matcher.exact_refine_check", &o.matcher.exact_refine_check},
+      {"keyframe_by_place", &o.keyframe_by_place}};
   for (const std::string& setting : settings) {
     const auto [name, value] = ParseSetting(setting);
     if (const auto d = doubles.find(name); d != doubles.end()) {

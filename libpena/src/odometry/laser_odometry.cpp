@@ -13,10 +13,19 @@
 #include "reference_fill.hpp"
 #include "search_window.hpp"
 #include "burst_timing.hpp"
+#include "frozen_odometry.hpp"
 #include "gate_confirmation.hpp"
 #include "stale_scan.hpp"
 
 namespace pena::odometry {
+namespace {
+
+internal::PlaceChoice PlaceChoiceOf(const LaserOdometryOptions& o) {
+  return {o.local_map_pool_keyframes, o.local_map_pool_age_s, o.local_map_recent_keyframes,
+          o.local_map_place_radius_m, o.keyframe_distance_m, o.keyframe_angle_rad};
+}
+
+}  // namespace
 
 struct LaserOdometry::Impl {
   Impl(const LaserOdometryOptions& checked, MotionPrior mode, bool confirm,
@@ -28,7 +37,7 @@ struct LaserOdometry::Impl {
                                                              checked.tilt_max_pitch_rad)
                                   : 0.0),
         local_map(checked.local_map_keyframes, 2.0 * checked.matcher.threshold_m, confirm,
-                  wall_only_range_m),
+                  wall_only_range_m, PlaceChoiceOf(checked)),
         window(checked),
         stale_scans(checked.stale_history_scans, checked.stale_repeat_m, checked.stale_changed_m),
         timing(checked.timing_burst_gap_s, checked.timing_burst_fraction,
@@ -38,7 +47,10 @@ struct LaserOdometry::Impl {
         estimate(world_from_start),
         previous_estimate(world_from_start),
         gate_confirmation(mode == MotionPrior::kDeadReckoning ? checked.prior_gate_agree_gyro_m : 0.0,
-                          checked.prior_gate_agree_gyro_rad) {}
+                          checked.prior_gate_agree_gyro_rad),
+        frozen_odometry(  // robots' wheel odometry only
+            mode == MotionPrior::kOdometry ? checked.frozen_odometry_min_turn_rad : 0.0,
+            mode == MotionPrior::kOdometry ? checked.frozen_odometry_min_move_m : 0.0) {}
 
   LaserOdometryOptions options;
   internal::MotionTracker motion;
@@ -66,6 +78,7 @@ struct LaserOdometry::Impl {
   // prior-consistency gate's allowance grows with it.
   std::optional<geometry::Pose2> motion_since_keyframe;
   internal::GateConfirmation gate_confirmation;
+  internal::FrozenOdometry frozen_odometry;  // wheel odometry only (frozen_odometry_*)
   int gated_in_row = 0;  // gated scans since the last keyframe (see prior_gate_fallback_scans)
   int heading_off_in_row = 0;  // matched scans off the gyro + compass heading (heading_bound_rad)
   std::optional<double> last_scan_stamp_s;
@@ -79,6 +92,7 @@ struct LaserOdometry::Impl {
     std::optional<geometry::Pose2> motion_pose;
     std::optional<double> heading_sigma_rad;
     bool poor_timing = false;
+    double stamp_s = 0.0;
   };
   std::optional<HeldCandidate> held;
   OdometryCounts counts;
@@ -90,7 +104,8 @@ struct LaserOdometry::Impl {
                                     const geometry::Pose2& prior, OdometryEstimate& out);
   void TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out);
   void AddKeyframe(const scan_matching::Points2& points, const geometry::Pose2& world_from_body,
-                   bool bursty);
+                   bool bursty, double stamp_s);
+  bool NearAKeyframe(const geometry::Pose2& moved) const;
   void CommitHeld(OdometryEstimate& out);
   // kGated: outside the prior-consistency gate; kTrusted: outside, but the last
   // prior_gate_confirm scans all were (the motion sensor is what is wrong).
@@ -211,10 +226,12 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
     // Its pose is the earlier scan's: the next scans go on from the prediction for now.
     estimate = out.world_from_prior;
     previous_estimate = estimate;
+    frozen_odometry.Estimated(estimate);
     return out;
   }
   velocity = geometry::Between(previous_estimate, estimate);
   previous_estimate = estimate;
+  frozen_odometry.Estimated(estimate);
   return out;
 }
 
@@ -222,8 +239,20 @@ geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
   const geometry::Pose2 increment = motion.TakeIncrement(scan);
   const auto& motion_pose = motion.last_pose();
   motion_since_keyframe.reset();
+  // Intel's bursts repeat the pose of the scan delivered with them (its Y frame: 0.249 -> 0.392 m
+  // when they were taken as freezes).
+  const bool burst =
+      poor_timing || (previous_scan_stamp_s &&
+                      scan.stamp_s - *previous_scan_stamp_s < options.timing_burst_gap_s);
+  const std::optional<geometry::Pose2> coasting =
+      frozen_odometry.Predict(motion_pose, previous_estimate, velocity, burst);
   if (!motion_pose || !keyframe_motion_pose || local_map.empty()) {
     return geometry::Compose(estimate, increment);
+  }
+  if (coasting) {  // the odometry froze while the scans moved: constant velocity meanwhile
+    motion_since_keyframe = geometry::Between(
+        *keyframe_motion_pose, *frozen_odometry.PairedPose(motion_pose, *coasting));
+    return *coasting;
   }
   motion_since_keyframe = geometry::Between(*keyframe_motion_pose, *motion_pose);
   // Anchored at the keyframe, not chained scan to scan: logged odometry often repeats a pose for
@@ -293,6 +322,10 @@ bool LaserOdometry::Impl::HeadingOffTheFilter() {
 
 void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEstimate& out) {
   geometry::Pose2 prior = out.world_from_prior;
+  // The place choice: back where an earlier keyframe was taken, match against that one again.
+  if (local_map.ChooseAgain(prior, out.stamp_s)) {
+    matcher.emplace(options.matcher, local_map.Reference());
+  }
   scan_matching::MatchResult result = Search(points, prior, out);
   if (held && result.score < options.keyframe_turn_min_score) {
     CommitHeld(out);
@@ -355,15 +388,11 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
     return;
   }
   if (result.score >= options.keyframe_turn_min_score) held.reset();  // the reference still holds
-  if (std::hypot(moved.x_m, moved.y_m) <= options.keyframe_distance_m &&
-      std::abs(moved.theta_rad) <= options.keyframe_angle_rad &&
-      result.score >= options.keyframe_min_score) {
-    return;
-  }
+  if (NearAKeyframe(moved) && result.score >= options.keyframe_min_score) return;
   if (HoldDuringFastTurn(result.score, out)) {
     ++counts.turn_held;  // the pose is output; the reference waits for a better match
-    held = HeldCandidate{points, estimate, motion.last_pose(), motion.heading_sigma_rad(),
-                         poor_timing};
+    held = HeldCandidate{points, estimate, frozen_odometry.PairedPose(motion.last_pose(), estimate),
+                         motion.heading_sigma_rad(), poor_timing, out.stamp_s};
     return;
   }
   TakeKeyframe(points, out);
@@ -374,7 +403,8 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
 void LaserOdometry::Impl::CommitHeld(OdometryEstimate& out) {
   HeldCandidate candidate = std::move(*held);
   held.reset();
-  AddKeyframe(candidate.points, candidate.world_from_body, candidate.poor_timing);
+  AddKeyframe(candidate.points, candidate.world_from_body, candidate.poor_timing,
+              candidate.stamp_s);
   keyframe_motion_pose = candidate.motion_pose;
   keyframe_heading_sigma_rad = candidate.heading_sigma_rad;
   ++counts.keyframes;
@@ -436,22 +466,34 @@ LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const Odom
 
 void LaserOdometry::Impl::TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out) {
   held.reset();
-  AddKeyframe(points, estimate, poor_timing);
-  keyframe_motion_pose = motion.last_pose();
+  AddKeyframe(points, estimate, poor_timing, out.stamp_s);
+  keyframe_motion_pose = frozen_odometry.PairedPose(motion.last_pose(), estimate);
   keyframe_heading_sigma_rad = motion.heading_sigma_rad();
   out.reference_changed = true;
   ++counts.keyframes;
 }
 
+// Within keyframe_distance_m and keyframe_angle_rad of the latest keyframe (moved: from there),
+// or with keyframe_by_place and the place choice of any keyframe of the reference.
+bool LaserOdometry::Impl::NearAKeyframe(const geometry::Pose2& moved) const {
+  if (options.keyframe_by_place && local_map.place_choice()) {
+    return local_map.Covers(estimate, options.keyframe_distance_m, options.keyframe_angle_rad);
+  }
+  return std::hypot(moved.x_m, moved.y_m) <= options.keyframe_distance_m &&
+         std::abs(moved.theta_rad) <= options.keyframe_angle_rad;
+}
+
 void LaserOdometry::Impl::AddKeyframe(const scan_matching::Points2& points,
-                                      const geometry::Pose2& world_from_body, bool bursty) {
+                                      const geometry::Pose2& world_from_body, bool bursty,
+                                      double stamp_s) {
   const double max_gap_beams = bursty ? options.reference_fill_max_gap_beams_bursty
                                       : options.reference_fill_max_gap_beams;
   local_map.Add({world_from_body,
                  internal::FillReference(scan_matching::TransformPoints(world_from_body, points),
                                          world_from_body, fill_spacing_m,
                                          options.reference_fill_max_gap_m, max_gap_beams,
-                                         fill_max_range_m, options.reference_fill_band_spacing_m)});
+                                         fill_max_range_m, options.reference_fill_band_spacing_m),
+                 stamp_s});
   gated_in_row = 0;
   matcher.emplace(options.matcher, local_map.Reference());
 }

@@ -22,6 +22,15 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
   Require(o.max_range_m > o.min_range_m, "max_range_m", "> min_range_m (m)", o.max_range_m);
   Require(o.min_match_points >= 3, "min_match_points", ">= 3 points", o.min_match_points);
   Require(o.local_map_keyframes >= 1, "local_map_keyframes", ">= 1", o.local_map_keyframes);
+  Require(o.local_map_pool_keyframes >= 0, "local_map_pool_keyframes", ">= 0 (0: off)",
+          o.local_map_pool_keyframes);
+  Require(o.local_map_pool_age_s > 0.0, "local_map_pool_age_s", "> 0 s", o.local_map_pool_age_s);
+  Require(o.local_map_recent_keyframes >= 1 &&
+              o.local_map_recent_keyframes <= o.local_map_keyframes,
+          "local_map_recent_keyframes", "in [1, local_map_keyframes]",
+          o.local_map_recent_keyframes);
+  Require(o.local_map_place_radius_m > 0.0, "local_map_place_radius_m", "> 0 m",
+          o.local_map_place_radius_m);
   Require(o.keyframe_distance_m > 0.0, "keyframe_distance_m", "> 0 m", o.keyframe_distance_m);
   Require(o.keyframe_angle_rad > 0.0, "keyframe_angle_rad", "> 0 rad", o.keyframe_angle_rad);
   Require(o.keyframe_min_score >= 0.0 && o.keyframe_min_score <= 1.0, "keyframe_min_score",
@@ -32,6 +41,10 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           "keyframe_turn_min_score", "in [0, 1]", o.keyframe_turn_min_score);
   Require(o.keyframe_turn_min_interval_s > 0.0, "keyframe_turn_min_interval_s", "> 0 s",
           o.keyframe_turn_min_interval_s);
+  Require(o.frozen_odometry_min_turn_rad >= 0.0, "frozen_odometry_min_turn_rad",
+          ">= 0 rad (0: off)", o.frozen_odometry_min_turn_rad);
+  Require(o.frozen_odometry_min_move_m >= 0.0, "frozen_odometry_min_move_m", ">= 0 m (0: off)",
+          o.frozen_odometry_min_move_m);
   Require(o.degenerate_eigen_ratio >= 0.0 && o.degenerate_eigen_ratio < 1.0,
           "degenerate_eigen_ratio", "in [0, 1)", o.degenerate_eigen_ratio);
   Require(o.degenerate_slide_ratio >= 0.0 && o.degenerate_slide_ratio < 1.0,

@@ -46,6 +46,20 @@ struct LaserOdometryOptions {
   double keyframe_distance_m = 0.5;
   double keyframe_angle_rad = 0.2617993877991494;  // 15 deg
   double keyframe_min_score = 0.5;                 // overlap fallen below: new keyframe
+  // The reference chosen by place (issue 3, twelfth round): local_map_pool_keyframes > 0 keeps
+  // that many keyframes, and the reference is the latest local_map_recent_keyframes of them plus
+  // those taken nearest the pose (within local_map_place_radius_m and local_map_pool_age_s;
+  // ranked by distance / keyframe_distance_m + heading difference / keyframe_angle_rad),
+  // local_map_keyframes in all; chosen again at a scan whose best-ranked keyframe is not in it.
+  // Turning back on the spot then matches the keyframe made facing that way before instead of
+  // chaining new ones. The pool is a short window, not a map: no loop closure. 0: off (recency).
+  int local_map_pool_keyframes = 0;
+  double local_map_pool_age_s = 60.0;
+  int local_map_recent_keyframes = 3;
+  double local_map_place_radius_m = 2.0;
+  // With the place choice: a new keyframe only when no keyframe of the reference (not only the
+  // latest) lies within keyframe_distance_m and keyframe_angle_rad, or the score fell below.
+  bool keyframe_by_place = false;
   // Keyframes during fast turns (issue 3): while the entity turns faster than
   // keyframe_turn_rate_rad_s (the larger of the matched and the predicted rotation since the
   // previous scan, over at least keyframe_turn_min_interval_s), a match scoring below
@@ -147,6 +161,17 @@ struct LaserOdometryOptions {
   // ... except within this long after the heading filter rejected a compass reading (a
   // magnetic disturbance: the prior's heading is bent, the scans win on the count alone).
   double prior_gate_compass_window_s = 1.0;
+  // Wheel odometry that freezes (robots, MotionPrior::kOdometry): a sensor pose repeated exactly
+  // at the next scan while the estimate moved by at least frozen_odometry_min_turn_rad or
+  // frozen_odometry_min_move_m over the interval before is a logger that stopped updating
+  // (mit-csail: three to four scans of zeros in a turn, then a 50-85 deg catch-up); not within a
+  // burst of scans (timing_burst_*: intel repeats the pose of scans delivered together). While it
+  // lasts the prior is constant velocity, and keyframes are paired with the frozen pose moved on
+  // by the estimated motion, so the catch-up is not added on top. Both 0: off. Measured with
+  // 1 deg and 0.15 m (a standing aces robot's estimate jitters by up to 0.1 m a scan):
+  // mit-csail 0.190 -> 0.151 m, aces and intel unchanged (docs/odometry.md, twelfth round).
+  double frozen_odometry_min_turn_rad = 0.0;
+  double frozen_odometry_min_move_m = 0.0;
   // Stale scans: a scan whose ranges repeat one of the last stale_history_scans scans (median
   // beam difference at most stale_repeat_m) while differing from the previous scan by more than
   // stale_changed_m was delivered late (intel: 40 such scans, during turns on the spot). It is
