@@ -25,13 +25,7 @@ const sim::EntityRecording& Robot() { return testing::TeamEntity("robot1"); }
 
 std::vector<OdometryEstimate> Replay(const std::vector<sensors::SensorRecord>& records,
                                      const LaserOdometryOptions& options) {
-  const sim::EntityRecording& robot = Robot();
-  LaserOdometry odometry(options, robot.kind, robot.truth.front().world_from_body, robot.start_s);
-  std::vector<OdometryEstimate> estimates;
-  for (const auto& record : records) {
-    if (auto estimate = odometry.Add(record)) estimates.push_back(*estimate);
-  }
-  return estimates;
+  return testing::ReplayRecords(Robot(), records, options);
 }
 
 double FinalErrorM(const std::vector<OdometryEstimate>& estimates) {
