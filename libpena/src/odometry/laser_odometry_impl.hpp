@@ -1,0 +1,121 @@
+#pragma once
+// LaserOdometry's state (internal): the facade's steps are in laser_odometry.cpp, the keyframe
+// and prior-gate decisions in laser_odometry_keyframes.cpp.
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "burst_timing.hpp"
+#include "frozen_odometry.hpp"
+#include "gate_confirmation.hpp"
+#include "local_map.hpp"
+#include "motion_tracker.hpp"
+#include "pena/odometry/laser_odometry.hpp"
+#include "pena/scan_matching/correlation_scan_matcher.hpp"
+#include "search_window.hpp"
+#include "stale_scan.hpp"
+
+namespace pena::odometry {
+namespace internal {
+
+inline PlaceChoice PlaceChoiceOf(const LaserOdometryOptions& o) {
+  return {o.local_map_pool_keyframes, o.local_map_pool_age_s, o.local_map_recent_keyframes,
+          o.local_map_place_radius_m, o.keyframe_distance_m, o.keyframe_angle_rad};
+}
+
+}  // namespace internal
+
+struct LaserOdometry::Impl {
+  Impl(const LaserOdometryOptions& checked, MotionPrior mode, bool confirm,
+       const geometry::Pose2& world_from_start, double start_stamp_s)
+      : options(checked),
+        motion(mode, checked.dead_reckoning, world_from_start, start_stamp_s),
+        wall_only_range_m(confirm ? internal::WallOnlyRangeM(checked.tilt_laser_height_m,
+                                                             checked.tilt_ceiling_height_m,
+                                                             checked.tilt_max_pitch_rad)
+                                  : 0.0),
+        local_map(checked.local_map_keyframes, 2.0 * checked.matcher.threshold_m, confirm,
+                  wall_only_range_m, internal::PlaceChoiceOf(checked)),
+        window(checked),
+        stale_scans(checked.stale_history_scans, checked.stale_repeat_m, checked.stale_changed_m),
+        timing(checked.timing_burst_gap_s, checked.timing_burst_fraction,
+               checked.timing_burst_window_scans),
+        fill_spacing_m(confirm && wall_only_range_m <= 0.0 ? 0.0 : checked.reference_fill_spacing_m),
+        fill_max_range_m(confirm ? wall_only_range_m : std::numeric_limits<double>::infinity()),
+        estimate(world_from_start),
+        previous_estimate(world_from_start),
+        gate_confirmation(mode == MotionPrior::kDeadReckoning ? checked.prior_gate_agree_gyro_m : 0.0,
+                          checked.prior_gate_agree_gyro_rad),
+        frozen_odometry(  // robots' wheel odometry only
+            mode == MotionPrior::kOdometry ? checked.frozen_odometry_min_turn_rad : 0.0,
+            mode == MotionPrior::kOdometry ? checked.frozen_odometry_min_move_m : 0.0) {}
+
+  LaserOdometryOptions options;
+  internal::MotionTracker motion;
+  // With reference confirmation: the tilt model's range within which returns are walls (0: none).
+  double wall_only_range_m;
+  internal::LocalMap local_map;
+  std::optional<scan_matching::CorrelationScanMatcher> matcher;  // built from local_map
+  internal::WindowScale window;
+  internal::StaleScanDetector stale_scans;
+  internal::BurstTiming timing;
+  bool poor_timing = false;  // scans arrive in bursts now: keyframes keep the bursty fill limit
+  // Keyframes are densified only where no floor or ceiling hit can be: with a tilting body-worn
+  // laser filled floor-hit streaks confirm each other (measured in docs/odometry.md). Without
+  // confirmation everywhere; with it, within the tilt model's wall-only range (if any).
+  double fill_spacing_m;
+  double fill_max_range_m;
+  geometry::Pose2 estimate;
+  // The motion sensor's pose at the latest keyframe: priors are anchored there (see Predict).
+  std::optional<geometry::Pose2> keyframe_motion_pose;
+  std::optional<double> keyframe_heading_sigma_rad;  // the heading filter's there (dead reckoning)
+  geometry::Pose2 previous_estimate;  // at the previous scan
+  geometry::Pose2 velocity;           // estimated motion over the previous scan interval
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  // The motion sensor's motion since the latest keyframe (nullopt without a sensor pose): the
+  // prior-consistency gate's allowance grows with it.
+  std::optional<geometry::Pose2> motion_since_keyframe;
+  internal::GateConfirmation gate_confirmation;
+  internal::FrozenOdometry frozen_odometry;  // wheel odometry only (frozen_odometry_*)
+  int gated_in_row = 0;  // gated scans since the last keyframe (see prior_gate_fallback_scans)
+  int heading_off_in_row = 0;  // matched scans off the gyro + compass heading (heading_bound_rad)
+  std::optional<double> last_scan_stamp_s;
+  std::optional<double> previous_scan_stamp_s;  // of the scan before the one being added
+  // A poor match in a fast turn not made a keyframe (keyframe_turn_*): if the next match against
+  // the kept reference is poor too, the reference no longer covers the turn and this candidate
+  // becomes the keyframe after all (the mit-csail runs without it failed two scans later).
+  struct HeldCandidate {
+    scan_matching::Points2 points;  // scan frame
+    geometry::Pose2 world_from_body;
+    std::optional<geometry::Pose2> motion_pose;
+    std::optional<double> heading_sigma_rad;
+    bool poor_timing = false;
+    double stamp_s = 0.0;
+  };
+  std::optional<HeldCandidate> held;
+  OdometryCounts counts;
+
+  OdometryEstimate AddScan(const sensors::LaserScan& scan);
+  geometry::Pose2 Predict(const sensors::LaserScan& scan);
+  void Match(const scan_matching::Points2& points, OdometryEstimate& out);
+  scan_matching::MatchResult Search(const scan_matching::Points2& points,
+                                    const geometry::Pose2& prior, OdometryEstimate& out);
+  void TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out);
+  void AddKeyframe(const scan_matching::Points2& points, const geometry::Pose2& world_from_body,
+                   bool bursty, double stamp_s);
+  bool NearAKeyframe(const geometry::Pose2& moved) const;
+  void CommitHeld(OdometryEstimate& out);
+  // kGated: outside the prior-consistency gate; kTrusted: outside, but the last
+  // prior_gate_confirm scans all were (the motion sensor is what is wrong).
+  enum class GateDecision { kInside, kGated, kTrusted };
+  GateDecision CheckPriorGate(const OdometryEstimate& out);
+  bool HoldDuringFastTurn(double score, const OdometryEstimate& out) const;
+  double GateBaseRad() const;
+  void FallBackToPrior(const scan_matching::Points2& points, OdometryEstimate& out);
+  bool HeadingOffTheFilter();
+};
+
+}  // namespace pena::odometry

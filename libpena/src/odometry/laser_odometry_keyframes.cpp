@@ -1,0 +1,153 @@
+// The keyframe and prior-gate decisions of LaserOdometry (see laser_odometry_impl.hpp): when a
+// match may anchor later priors, when it is held or gated, and how a keyframe enters the
+// reference.
+#include <cmath>
+
+#include "laser_odometry_impl.hpp"
+#include "reference_fill.hpp"
+
+namespace pena::odometry {
+
+// The gate's heading allowance before the turn fraction. With dead reckoning and
+// prior_gate_gyro_sigmas > 0 it is that many standard deviations of the heading change since the
+// keyframe (the heading filter's at both ends, taken as independent); it widens by itself while
+// the compass is rejected or the gyro was silent. Otherwise the fixed prior_gate_rad.
+double LaserOdometry::Impl::GateBaseRad() const {
+  const std::optional<double>& now_rad = motion.heading_sigma_rad();
+  if (!(options.prior_gate_gyro_sigmas > 0.0) || !now_rad || !keyframe_heading_sigma_rad) {
+    return options.prior_gate_rad;
+  }
+  return options.prior_gate_gyro_sigmas * std::hypot(*now_rad, *keyframe_heading_sigma_rad);
+}
+
+// Gated scans that keep disagreeing with the prior and with each other (never trusted) mean the
+// scans cannot be matched here (aliasing, floor hits): go on from the motion prior as after a
+// failed match, so that the reference follows the entity instead of staying behind.
+void LaserOdometry::Impl::FallBackToPrior(const scan_matching::Points2& points,
+                                          OdometryEstimate& out) {
+  estimate = out.world_from_prior;
+  // The keyframe-anchored prior carries every keyframe's heading error along; the gyro + compass
+  // heading is bounded by the compass (ff1 of team seed 1 alone: 0.5 deg RMS). Take that one.
+  if (motion.mode() == MotionPrior::kDeadReckoning && motion.last_pose()) {
+    estimate.theta_rad = motion.last_pose()->theta_rad;
+  }
+  local_map.Clear();
+  TakeKeyframe(points, out);
+}
+
+// True when the matched heading has been off the gyro + compass filter's heading by more than
+// heading_bound_rad for heading_bound_scans scans in a row (people only; off at 0).
+bool LaserOdometry::Impl::HeadingOffTheFilter() {
+  if (!(options.heading_bound_rad > 0.0) || motion.mode() != MotionPrior::kDeadReckoning ||
+      !motion.last_pose()) {
+    return false;
+  }
+  const double off_rad = geometry::NormalizeAngle(estimate.theta_rad - motion.last_pose()->theta_rad);
+  heading_off_in_row = std::abs(off_rad) > options.heading_bound_rad ? heading_off_in_row + 1 : 0;
+  if (heading_off_in_row < options.heading_bound_scans) return false;
+  heading_off_in_row = 0;
+  return true;
+}
+
+// The held candidate becomes the latest keyframe, and the scan being matched is predicted from
+// it (the prior anchored there, as in Predict).
+void LaserOdometry::Impl::CommitHeld(OdometryEstimate& out) {
+  HeldCandidate candidate = std::move(*held);
+  held.reset();
+  AddKeyframe(candidate.points, candidate.world_from_body, candidate.poor_timing,
+              candidate.stamp_s);
+  keyframe_motion_pose = candidate.motion_pose;
+  keyframe_heading_sigma_rad = candidate.heading_sigma_rad;
+  ++counts.keyframes;
+  const auto& motion_pose = motion.last_pose();
+  if (!motion_pose || !keyframe_motion_pose) return;
+  motion_since_keyframe = geometry::Between(*keyframe_motion_pose, *motion_pose);
+  out.world_from_prior = geometry::Compose(candidate.world_from_body, *motion_since_keyframe);
+}
+
+// A poor match in a fast turn is the one most likely to be a few degrees off (the scan blurs,
+// the overlap with the reference shrinks), and as a keyframe it would anchor every later prior
+// and match: its heading error stays. The reference the last good match used is kept instead.
+bool LaserOdometry::Impl::HoldDuringFastTurn(double score, const OdometryEstimate& out) const {
+  if (!(options.keyframe_turn_rate_rad_s > 0.0) || score >= options.keyframe_turn_min_score ||
+      !previous_scan_stamp_s) {
+    return false;
+  }
+  const double interval_s =
+      std::max(out.stamp_s - *previous_scan_stamp_s, options.keyframe_turn_min_interval_s);
+  // The matched and the predicted rotation: logged odometry may freeze in a turn (mit-csail),
+  // a poor match may be the one that under-turned.
+  const double matched_rad =
+      std::abs(geometry::NormalizeAngle(estimate.theta_rad - previous_estimate.theta_rad));
+  const double predicted_rad = std::abs(
+      geometry::NormalizeAngle(out.world_from_prior.theta_rad - previous_estimate.theta_rad));
+  return std::max(matched_rad, predicted_rad) / interval_s > options.keyframe_turn_rate_rad_s;
+}
+
+// A match far from the motion prior is either an aliased optimum found by a grown window or a
+// scan that does not belong to its stamp (intel: scans from a second earlier re-delivered during
+// a turn on the spot). Either way it must not become a keyframe: the next priors are anchored
+// there. Trusted after prior_gate_confirm in a row: then the motion sensor is what is wrong.
+LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const OdometryEstimate& out) {
+  if (options.prior_gate_rad <= 0.0 || !motion_since_keyframe) return GateDecision::kInside;
+  const geometry::Pose2 deviation = geometry::Between(out.world_from_prior, estimate);
+  const double moved_m = std::hypot(motion_since_keyframe->x_m, motion_since_keyframe->y_m);
+  const double turned_rad = std::abs(geometry::NormalizeAngle(motion_since_keyframe->theta_rad));
+  const double fraction_rad = motion.mode() == MotionPrior::kDeadReckoning
+                                  ? options.prior_gate_fraction_gyro
+                                  : options.prior_gate_fraction;
+  const double allowed_rad = GateBaseRad() + fraction_rad * turned_rad;
+  const double allowed_m = options.prior_gate_m + options.prior_gate_fraction * moved_m;
+  const bool outside = std::abs(deviation.theta_rad) > allowed_rad ||
+                       std::hypot(deviation.x_m, deviation.y_m) > allowed_m;
+  if (!outside) {
+    gate_confirmation.Inside();
+    return GateDecision::kInside;
+  }
+  const int confirm = motion.mode() == MotionPrior::kDeadReckoning
+                          ? options.prior_gate_confirm_gyro
+                          : options.prior_gate_confirm;
+  // A disturbed compass (readings being rejected) bends the gyro+compass heading while it
+  // lasts: the scans' deviations then change scan to scan and must count without agreeing
+  // (the disturbed-compass tests: 0.97 -> 4.9 m RMS if they have to agree).
+  const bool agree = !motion.CompassRejectedWithin(out.stamp_s, options.prior_gate_compass_window_s);
+  return gate_confirmation.Outside(deviation, confirm, agree) ? GateDecision::kTrusted
+                                                              : GateDecision::kGated;
+}
+
+void LaserOdometry::Impl::TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out) {
+  held.reset();
+  AddKeyframe(points, estimate, poor_timing, out.stamp_s);
+  keyframe_motion_pose = frozen_odometry.PairedPose(motion.last_pose(), estimate);
+  keyframe_heading_sigma_rad = motion.heading_sigma_rad();
+  out.reference_changed = true;
+  ++counts.keyframes;
+}
+
+// Within keyframe_distance_m and keyframe_angle_rad of the latest keyframe (moved: from there),
+// or with keyframe_by_place and the place choice of any keyframe of the reference.
+bool LaserOdometry::Impl::NearAKeyframe(const geometry::Pose2& moved) const {
+  if (options.keyframe_by_place && local_map.place_choice()) {
+    return local_map.Covers(estimate, options.keyframe_distance_m, options.keyframe_angle_rad);
+  }
+  return std::hypot(moved.x_m, moved.y_m) <= options.keyframe_distance_m &&
+         std::abs(moved.theta_rad) <= options.keyframe_angle_rad;
+}
+
+void LaserOdometry::Impl::AddKeyframe(const scan_matching::Points2& points,
+                                      const geometry::Pose2& world_from_body, bool bursty,
+                                      double stamp_s) {
+  const double max_gap_beams = bursty ? options.reference_fill_max_gap_beams_bursty
+                                      : options.reference_fill_max_gap_beams;
+  local_map.Add({world_from_body,
+                 internal::FillReference(scan_matching::TransformPoints(world_from_body, points),
+                                         world_from_body, fill_spacing_m,
+                                         options.reference_fill_max_gap_m, max_gap_beams,
+                                         fill_max_range_m, options.reference_fill_band_spacing_m),
+                 stamp_s});
+  gated_in_row = 0;
+  matcher.emplace(options.matcher, local_map.Reference());
+}
+
+
+}  // namespace pena::odometry
