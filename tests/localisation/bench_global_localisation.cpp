@@ -104,6 +104,8 @@ void ApplySettings(localisation::LocalisationChainOptions& chain) {
     else if (name == "min_keyframes") o.min_keyframes = static_cast<int>(value);
     else if (name == "through_weight") o.through_weight = value;
     else if (name == "final_keyframes") o.final_keyframes = static_cast<int>(value);
+    else if (name == "freeze_history_keyframes") o.freeze_history_keyframes = static_cast<int>(value);
+    else if (name == "boundary_fraction") o.boundary_fraction = value;
     else if (name == "compass_tolerance_deg") chain.compass_tolerance_rad = value * kDeg;
     else {
       std::fprintf(stderr, "PENA_BENCH_SET: unknown tracker option %s\n", name.c_str());
@@ -122,7 +124,10 @@ void Trace(const localisation::GlobalResult& ranked, const geometry::Pose2& trut
   std::printf("  kf walked %5.1f truth %6.2f %6.2f %6.1f: %zu tracks, leader %6.2f %6.2f %6.1f ev %6.0f ag %.2f",
               walked_m, truth.x_m, truth.y_m, truth.theta_rad / kDeg, h.size(), h[0].map_from_body.x_m,
               h[0].map_from_body.y_m, h[0].map_from_body.theta_rad / kDeg, h[0].score, h[0].agreement);
-  if (h.size() > 1) std::printf(", 2nd %6.2f %6.2f ev %6.0f", h[1].map_from_body.x_m, h[1].map_from_body.y_m, h[1].score);
+  if (h.size() > 1) {
+    std::printf(", 2nd %6.2f %6.2f ev %6.0f margin %5.0f", h[1].map_from_body.x_m, h[1].map_from_body.y_m, h[1].score,
+                ranked.margin);
+  }
   if (true_rank >= 0) {
     std::printf(", true rank %d ev %6.0f ag %.2f\n", true_rank, h[static_cast<std::size_t>(true_rank)].score,
                 h[static_cast<std::size_t>(true_rank)].agreement);

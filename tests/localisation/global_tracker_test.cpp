@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <vector>
 
 #include "office_plan.hpp"
 
@@ -93,6 +94,42 @@ TEST(GlobalTracker, DecidesNothingOnAWalkIntoTheUnmappedWestWing) {
   EXPECT_FALSE(WalkIntoTheWestWing({}).decided.has_value());
 }
 
+// A walk west along the corridor from x 13.1 into the west wing the plan lacks (to x 2.1), then
+// back east (0.5 m steps, perfect scans of the true walls) until `tracker` decides or x 20.
+WalkResult WalkIntoTheWestWingAndBack(const GlobalTrackerOptions& options) {
+  const sim::Scenario office = testing::OfficeScenario();
+  const VirtualScanner truth_scanner(office.walls);
+  const GlobalLocaliser localiser(*office.apriori);
+  GlobalTracker tracker(localiser, options);
+  const geometry::Pose2 odom_from_map{-2.0, 5.0, -30.0 * kDeg};
+  std::vector<geometry::Pose2> walk;
+  for (int step = 0; step <= 22; ++step) walk.push_back({13.1 - 0.5 * step, 14.0, 180.0 * kDeg});
+  for (int step = 0; step <= 36; ++step) walk.push_back({2.1 + 0.5 * step, 14.0, 0.0});
+  WalkResult result;
+  for (const geometry::Pose2& truth : walk) {
+    result.truth = truth;
+    const auto scan = truth_scanner.Scan(truth, testing::OfficeLaser(), 361);
+    result.decided = tracker.Update(scan, geometry::Compose(odom_from_map, truth)).decided;
+    if (result.decided) break;
+  }
+  return result;
+}
+
+// With the pairwise freeze the walk into the wing and back is decided, and right: while the walker
+// is off the plan (seeing past its x = 4 end wall, or beyond it) the true place keeps the lead it
+// earned on the way west over the look-alike 6 m east, and its placement stays where the odometry
+// carries it. Without the freeze the look-alike 6 m east is decided as the walker comes back
+// (about x 3, docs/localisation.md).
+TEST(GlobalTracker, PairwiseFreezeDecidesTheTruePoseAfterTheUnmappedWestWing) {
+  GlobalTrackerOptions options;
+  options.freeze_history_keyframes = 48;
+  const WalkResult walk = WalkIntoTheWestWingAndBack(options);
+  ASSERT_TRUE(walk.decided.has_value());
+  EXPECT_NEAR(walk.decided->map_from_body.x_m, walk.truth.x_m, 0.1);
+  EXPECT_NEAR(walk.decided->map_from_body.y_m, walk.truth.y_m, 0.1);
+  EXPECT_NEAR(geometry::NormalizeAngle(walk.decided->map_from_body.theta_rad - walk.truth.theta_rad), 0.0, 1.0 * kDeg);
+}
+
 // With the odometry frame's heading known to within 30 deg (a compass; here 10 deg off), every
 // followed hypothesis keeps to it, and the walk west still settles on the true pose.
 TEST(GlobalTracker, HeadingToleranceKeepsEveryTrackWithinIt) {
@@ -133,6 +170,12 @@ TEST(GlobalTrackerOptions, RejectsBadValues) {
   EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
   options = {};
   options.odom_heading_tolerance_rad = -0.1;
+  EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
+  options = {};
+  options.freeze_history_keyframes = -1;
+  EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
+  options = {};
+  options.boundary_fraction = 1.5;
   EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
 }
 

@@ -80,6 +80,12 @@ struct GlobalLocaliser::Impl {
   scan_matching::CorrelationScanMatcher fine;
   std::vector<geometry::Pose2> tile_centres;
   VirtualScanner scanner;
+  Eigen::Vector2d box_low_m = Eigen::Vector2d::Zero();   // the plan's bounding box
+  Eigen::Vector2d box_high_m = Eigen::Vector2d::Zero();
+
+  bool InBox(const Eigen::Vector2d& p) const {
+    return (p.array() >= box_low_m.array()).all() && (p.array() <= box_high_m.array()).all();
+  }
 
   void MakeTiles(const std::vector<geometry::Segment2>& plan) {
     if (plan.empty()) return;
@@ -88,6 +94,8 @@ struct GlobalLocaliser::Impl {
       low = low.cwiseMin(s.start_m).cwiseMin(s.end_m);
       high = high.cwiseMax(s.start_m).cwiseMax(s.end_m);
     }
+    box_low_m = low;
+    box_high_m = high;
     low.array() -= options.margin_m;
     high.array() += options.margin_m;
     const double t = options.tile_size_m;
@@ -145,7 +153,12 @@ struct GlobalLocaliser::Impl {
       ++counts.returns;
       const double expected = virtual_m[i];  // +inf when the plan has nothing there
       if (std::abs(real - expected) <= options.agreement_tolerance_m) ++counts.agree;
-      else if (real > expected) ++counts.through;  // the beam passed where the plan has a wall
+      else if (real > expected) {  // the beam passed where the plan has a wall
+        ++counts.through;
+        const double angle = map_from_body.theta_rad + scan.BeamAngle(i);
+        const Eigen::Vector2d end(map_from_body.x_m + real * std::cos(angle), map_from_body.y_m + real * std::sin(angle));
+        if (!InBox(end)) ++counts.beyond;
+      }
     }
     return counts;
   }
@@ -239,6 +252,10 @@ GlobalResult GlobalLocaliser::Localise(const sensors::LaserScan& scan, int max_h
 
 BeamAgreement GlobalLocaliser::Agreement(const sensors::LaserScan& scan, const geometry::Pose2& map_from_body) const {
   return impl_->Agreement(scan, map_from_body);
+}
+
+bool GlobalLocaliser::Inside(const geometry::Pose2& map_from_body) const {
+  return impl_->InBox({map_from_body.x_m, map_from_body.y_m});
 }
 
 bool GlobalLocaliser::Blocked(const geometry::Pose2& from, const geometry::Pose2& to) const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -28,6 +29,9 @@ void Validate(const GlobalTrackerOptions& o) {
   Require(o.search_every_m > 0.0, "search_every_m", "> 0 m", o.search_every_m);
   Require(o.through_weight >= 0.0, "through_weight", ">= 0", o.through_weight);
   Require(o.final_keyframes >= 0, "final_keyframes", ">= 0", o.final_keyframes);
+  Require(o.freeze_history_keyframes >= 0, "freeze_history_keyframes", ">= 0", o.freeze_history_keyframes);
+  Require(o.boundary_fraction >= 0.0 && o.boundary_fraction <= 1.0, "boundary_fraction", "in [0, 1]",
+          o.boundary_fraction);
   Require(o.odom_heading_tolerance_rad >= 0.0, "odom_heading_tolerance_rad", ">= 0 rad",
           o.odom_heading_tolerance_rad);
 }
@@ -55,30 +59,102 @@ void GlobalTracker::Search(const sensors::LaserScan& scan, const geometry::Pose2
     const bool followed = std::any_of(tracks_.begin(), tracks_.end(), [&](const Track& t) {
       return SamePlace(t.map_from_body, h.map_from_body);
     });
-    if (!followed) tracks_.push_back({geometry::Compose(h.map_from_body, body_from_odom), h.map_from_body, 0.0, h.agreement});
+    if (followed) continue;
+    Track track;
+    track.map_from_odom = geometry::Compose(h.map_from_body, body_from_odom);
+    track.map_from_body = h.map_from_body;
+    track.agreement = h.agreement;
+    tracks_.push_back(track);
   }
 }
 
-// Every track on every kept keyframe, at the placement its latest fit gives.
+// Every track on every kept keyframe, at the placement its latest fit gives: the evidence over the
+// latest max_keyframes and, for the pairwise freeze, each keyframe's beams and on-plan flag.
 void GlobalTracker::Score() {
+  const std::size_t recent = std::min(keyframes_.size(), static_cast<std::size_t>(options_.max_keyframes));
+  const std::size_t first_recent = keyframes_.size() - recent;
+  const bool pairwise = options_.freeze_history_keyframes > 0;
   for (Track& t : tracks_) {
     t.evidence_beams = 0.0;
     t.walks_through_walls = false;
+    t.keyframe_beams.clear();
+    t.keyframe_on_plan.clear();
     std::optional<geometry::Pose2> previous;
-    for (const Keyframe& k : keyframes_) {
-      const geometry::Pose2 map_from_body = geometry::Compose(t.map_from_odom, k.odom_from_body);
-      const BeamAgreement a = localiser_->Agreement(k.scan, map_from_body);
-      t.evidence_beams += a.agree - options_.through_weight * a.through;
+    for (std::size_t i = pairwise ? 0 : first_recent; i < keyframes_.size(); ++i) {
+      const geometry::Pose2 map_from_body = geometry::Compose(t.map_from_odom, keyframes_[i].odom_from_body);
+      const BeamAgreement a = localiser_->Agreement(keyframes_[i].scan, map_from_body);
+      const double beams = a.agree - options_.through_weight * a.through;
+      if (pairwise) {
+        t.keyframe_beams.push_back(beams);
+        t.keyframe_on_plan.push_back(OnPlan(a, map_from_body));
+      }
+      if (i < first_recent) continue;
+      t.evidence_beams += beams;
       if (previous && localiser_->Blocked(*previous, map_from_body)) t.walks_through_walls = true;
       previous = map_from_body;
     }
   }
 }
 
+// How far `a` leads `b` (beams) on the latest max_keyframes keyframes where both are on the plan:
+// a keyframe where either sees past the plan's boundary or is outside it leaves the lead as it was.
+// With fewer than min_keyframes such keyframes there is no earlier lead worth keeping (a place
+// off the plan almost all along would otherwise never be refuted, or block every decision with a
+// lead from one or two keyframes): the evidence over the latest max_keyframes counts.
+double GlobalTracker::PairLead(const Track& a, const Track& b) const {
+  double lead = 0.0;
+  int used = 0;
+  for (std::size_t i = a.keyframe_beams.size(); i-- > 0 && used < options_.max_keyframes;) {
+    if (!a.keyframe_on_plan[i] || !b.keyframe_on_plan[i]) continue;
+    lead += a.keyframe_beams[i] - b.keyframe_beams[i];
+    ++used;
+  }
+  return used >= options_.min_keyframes ? lead : a.evidence_beams - b.evidence_beams;
+}
+
+// Pairwise freeze: each track's margin is its smallest lead over any other; best margin first.
+void GlobalTracker::RankPairwise() {
+  for (Track& t : tracks_) {
+    t.pairwise_margin_beams = tracks_.size() > 1 ? std::numeric_limits<double>::infinity() : 0.0;
+    for (const Track& o : tracks_) {
+      if (&o != &t) t.pairwise_margin_beams = std::min(t.pairwise_margin_beams, PairLead(t, o));
+    }
+  }
+  std::stable_sort(tracks_.begin(), tracks_.end(), [](const Track& a, const Track& b) {
+    return a.pairwise_margin_beams > b.pairwise_margin_beams;
+  });
+}
+
+// One track re-fitted at a new keyframe (Verify). With the pairwise freeze, a place off the plan
+// there (outside it, or seeing past its boundary) keeps the placement the odometry carries: a fit
+// to a plan that lacks what the scan sees slid the true place 0.2-0.3 m a keyframe in the west
+// wing, which changed its evidence on the earlier keyframes too.
+void GlobalTracker::Refit(Track& t, const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body) const {
+  const geometry::Pose2 carried = geometry::Compose(t.map_from_odom, odom_from_body);
+  if (options_.freeze_history_keyframes > 0) {
+    const BeamAgreement a = localiser_->Agreement(scan, carried);
+    if (!OnPlan(a, carried)) {
+      t.map_from_body = carried;
+      t.agreement = a.fraction();
+      return;
+    }
+  }
+  const PoseHypothesis h = localiser_->Verify(scan, carried);
+  t.map_from_odom = geometry::Compose(h.map_from_body, geometry::Inverse(odom_from_body));
+  t.map_from_body = h.map_from_body;
+  t.agreement = h.agreement;
+}
+
+bool GlobalTracker::OnPlan(const BeamAgreement& a, const geometry::Pose2& map_from_body) const {
+  return localiser_->Inside(map_from_body) && a.beyond <= options_.boundary_fraction * a.returns;
+}
+
 // Drops duplicates (two tracks converged on one place), tracks far behind the leader and the
 // worst beyond max_tracks.
 void GlobalTracker::Prune() {
-  std::stable_sort(tracks_.begin(), tracks_.end(), ByEvidence);
+  const bool pairwise = options_.freeze_history_keyframes > 0;
+  if (pairwise) RankPairwise();
+  else std::stable_sort(tracks_.begin(), tracks_.end(), ByEvidence);
   std::vector<Track> kept;
   for (const Track& t : tracks_) {
     const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const Track& k) {
@@ -89,7 +165,13 @@ void GlobalTracker::Prune() {
                         std::abs(geometry::NormalizeAngle(t.map_from_odom.theta_rad)) > options_.odom_heading_tolerance_rad;
     if (!duplicate && !turned) kept.push_back(t);
   }
-  if (!kept.empty()) {
+  if (!kept.empty() && pairwise) {
+    const Track leader = kept.front();
+    // A place off the plan now is kept: its comparison resumes when it is back on the plan.
+    std::erase_if(kept, [&](const Track& t) {
+      return t.keyframe_on_plan.back() && PairLead(leader, t) > options_.drop_margin_beams;
+    });
+  } else if (!kept.empty()) {
     const double floor = kept.front().evidence_beams - options_.drop_margin_beams;
     std::erase_if(kept, [&](const Track& t) { return t.evidence_beams < floor; });
   }
@@ -105,7 +187,11 @@ std::optional<PoseHypothesis> GlobalTracker::Decide() const {
   }
   const Track& leader = tracks_.front();
   if (leader.agreement < options_.min_agreement || leader.walks_through_walls) return std::nullopt;
-  if (tracks_.size() > 1 && leader.evidence_beams - tracks_[1].evidence_beams < options_.decide_margin_beams) {
+  if (options_.freeze_history_keyframes > 0) {
+    for (std::size_t i = 1; i < tracks_.size(); ++i) {
+      if (PairLead(leader, tracks_[i]) < options_.decide_margin_beams) return std::nullopt;
+    }
+  } else if (tracks_.size() > 1 && leader.evidence_beams - tracks_[1].evidence_beams < options_.decide_margin_beams) {
     return std::nullopt;
   }
   PoseHypothesis winner;
@@ -140,6 +226,8 @@ GlobalResult GlobalTracker::Ranked() const {
   }
   const auto& h = ranked.hypotheses;
   ranked.margin = h.size() > 1 ? h[0].score - h[1].score : (h.empty() ? 0.0 : 1.0);
+  // With the pairwise freeze the leader's margin is its smallest pairwise lead.
+  if (options_.freeze_history_keyframes > 0 && h.size() > 1) ranked.margin = tracks_.front().pairwise_margin_beams;
   return ranked;
 }
 
@@ -150,14 +238,10 @@ TrackerUpdate GlobalTracker::Update(const sensors::LaserScan& scan, const geomet
   travel_m_ += step_m;
   since_search_m_ += step_m;
   keyframes_.push_back({scan, odom_from_body});
-  if (keyframes_.size() > static_cast<std::size_t>(options_.max_keyframes)) keyframes_.erase(keyframes_.begin());
+  const int kept = std::max(options_.max_keyframes, options_.freeze_history_keyframes);
+  if (keyframes_.size() > static_cast<std::size_t>(kept)) keyframes_.erase(keyframes_.begin());
   // Existing tracks re-fitted at this scan (the odometry carried them here) ...
-  for (Track& t : tracks_) {
-    const PoseHypothesis h = localiser_->Verify(scan, geometry::Compose(t.map_from_odom, odom_from_body));
-    t.map_from_odom = geometry::Compose(h.map_from_body, geometry::Inverse(odom_from_body));
-    t.map_from_body = h.map_from_body;
-    t.agreement = h.agreement;
-  }
+  for (Track& t : tracks_) Refit(t, scan, odom_from_body);
   // ... new places from a whole-plan search when due, then all scored on the same keyframes.
   TrackerUpdate update;
   if (tracks_.empty() || since_search_m_ >= options_.search_every_m) {

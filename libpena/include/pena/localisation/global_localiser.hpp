@@ -74,6 +74,9 @@ struct PoseHypothesis {
 struct BeamAgreement {
   int agree = 0;    // real range within agreement_tolerance_m of the virtual one
   int through = 0;  // real range beyond the virtual one: the beam passed where the plan has a wall
+  // Of `through`, those whose real end point lies outside the plan's bounding box: the beam saw
+  // past the plan's boundary (office: past the x = 4 end wall into the unmapped west wing).
+  int beyond = 0;
   int returns = 0;  // real returns within the range band
   double fraction() const { return returns == 0 ? 0.0 : static_cast<double>(agree - through) / returns; }
 };
@@ -114,6 +117,8 @@ class GlobalLocaliser {
   // The real scan against the virtual scan from `map_from_body` (laser at the body origin).
   BeamAgreement Agreement(const sensors::LaserScan& scan, const geometry::Pose2& map_from_body) const;
 
+  // True if the position lies inside the plan's bounding box (segment end points).
+  bool Inside(const geometry::Pose2& map_from_body) const;
   // True if the straight walk between the two positions crosses a plan wall.
   bool Blocked(const geometry::Pose2& from, const geometry::Pose2& to) const;
 

@@ -47,6 +47,19 @@ struct GlobalTrackerOptions {
   // headings this close to the odometry's, and tracks whose placement turns the frame by more
   // are dropped. 0: no heading is known, every heading is searched.
   double odom_heading_tolerance_rad = 0.0;
+  // Pairwise freeze (0 = off): keyframes kept for comparing tracks pair by pair. When on, two
+  // tracks are compared only on keyframes where both are "on the plan" (inside its bounding box
+  // and seeing past its boundary on at most boundary_fraction of the returns), on the latest
+  // max_keyframes such keyframes of this history: while either is off the plan the pair's
+  // difference is frozen, and it resumes when both are on it again. Office: walking west past
+  // the plan's x = 4 end wall into the unmapped wing, the true place sees past the wall and a
+  // look-alike 6 m east earns more; without the freeze the true place lost its earlier lead.
+  // Tracks are then ranked by their smallest pairwise lead; the winner leads every other by
+  // decide_margin_beams; tracks trailing the leader by drop_margin_beams are dropped unless off
+  // the plan at the latest keyframe; a track off the plan is carried by the odometry, not re-fitted.
+  // Off: on office better on the west-wing starts but worse on the annex (docs/localisation.md).
+  int freeze_history_keyframes = 0;
+  double boundary_fraction = 0.1;
 };
 
 // One followed hypothesis.
@@ -56,6 +69,11 @@ struct Track {
   double evidence_beams = 0.0;     // agreeing minus see-through beams over the kept keyframes
   double agreement = 0.0;          // agreement fraction at the latest keyframe
   bool walks_through_walls = false; // its path over the kept keyframes crosses a plan wall
+  // Pairwise freeze only: per kept keyframe (oldest first), evidence in beams and whether the
+  // place is on the plan there (inside its box, seeing little past its boundary).
+  std::vector<double> keyframe_beams;
+  std::vector<bool> keyframe_on_plan;
+  double pairwise_margin_beams = 0.0;  // its smallest lead over any other (pairwise freeze only)
 };
 
 // What one update concluded.
@@ -84,8 +102,12 @@ class GlobalTracker {
   };
 
   void Search(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body);
+  void Refit(Track& t, const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body) const;
+  bool OnPlan(const BeamAgreement& a, const geometry::Pose2& map_from_body) const;
   void Score();
   void Prune();
+  void RankPairwise();
+  double PairLead(const Track& a, const Track& b) const;
   std::optional<PoseHypothesis> Decide() const;
   geometry::Pose2 FinalFit(const Track& winner) const;
   GlobalResult Ranked() const;
