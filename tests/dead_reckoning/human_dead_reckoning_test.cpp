@@ -231,6 +231,83 @@ TEST(HumanDeadReckoning, TurningOnTheSpotHoldsTheStrideInProgress) {
   EXPECT_THROW(HumanDeadReckoning(bad, StartAt(0.0, 0.0, 0.0)), std::invalid_argument);
 }
 
+// Team3 ff3 at 35-39.5 s: the walker stops at a report, stands (the prior carried a whole stride
+// on), turns 180 deg on the spot and walks back. Keyframes taken in the turn keep the invented
+// stride, and the next report (a stride along the new heading) moves the prior back by both. With
+// overdue_turn_rad the stride in progress is dropped once overdue and turned 45 deg: the prior is
+// at the last report (its covariance widened), and the report moves it by the stride alone.
+HumanDeadReckoning StopAndTurnBack(double overdue_turn_rad, double turn_rad_s) {
+  HumanDeadReckoningOptions options = Carried();
+  options.overdue_turn_rad = overdue_turn_rad;
+  HumanDeadReckoning dead_reckoning(options, StartAt(0.0, 0.0, 0.0));
+  WalkStraight(dead_reckoning, 4);  // at 2.4 m at t = 2.0 s, the next report due at 2.5 s
+  for (int tick = 1; tick <= 200; ++tick) {
+    // Standing until 3.0 s, then turning for 1 s (180 deg at pi rad/s) until 4.0 s.
+    const bool turning = tick > 100;
+    dead_reckoning.Add(sensors::GyroSample{2.0 + tick * 0.01, turning ? turn_rad_s : 0.0});
+  }
+  return dead_reckoning;
+}
+
+// Not turning (gyro at 0) from from_s to to_s.
+void HoldHeading(HumanDeadReckoning& dead_reckoning, double from_s, double to_s) {
+  for (int tick = 1; from_s + tick * 0.01 <= to_s + 1e-9; ++tick) {
+    dead_reckoning.Add(sensors::GyroSample{from_s + tick * 0.01, 0.0});
+  }
+}
+
+TEST(HumanDeadReckoning, AnOverdueTurnOnTheSpotDropsTheStrideInProgress) {
+  HumanDeadReckoning dropped = StopAndTurnBack(45.0 * kDeg, std::numbers::pi);
+  const PosePrior in_turn = dropped.PriorAt(4.0);
+  EXPECT_NEAR(in_turn.world_from_body.x_m, 2.4, 1e-9);
+  EXPECT_NEAR(in_turn.world_from_body.y_m, 0.0, 1e-9);
+  EXPECT_GT(in_turn.covariance(1, 1), 0.3 * 0.3);  // half a stride (0.3 m), any direction
+  HoldHeading(dropped, 4.0, 4.5);
+  dropped.Add(sensors::StrideSample{4.5, 0.3});  // 0.3 m back along -x
+  EXPECT_NEAR(dropped.PriorAt(4.5).world_from_body.x_m - in_turn.world_from_body.x_m, -0.3, 1e-6);
+  // The default carries the stride on through the turn: the report moves the prior 0.9 m back.
+  HumanDeadReckoning carried = StopAndTurnBack(0.0, std::numbers::pi);
+  const PosePrior carried_in_turn = carried.PriorAt(4.0);
+  EXPECT_NEAR(carried_in_turn.world_from_body.x_m, 3.0, 1e-9);
+  HoldHeading(carried, 4.0, 4.5);
+  carried.Add(sensors::StrideSample{4.5, 0.3});
+  EXPECT_NEAR(carried.PriorAt(4.5).world_from_body.x_m - carried_in_turn.world_from_body.x_m, -0.9,
+              1e-6);
+  HumanDeadReckoningOptions bad = Carried();
+  bad.overdue_turn_rad = -0.1;
+  EXPECT_THROW(HumanDeadReckoning(bad, StartAt(0.0, 0.0, 0.0)), std::invalid_argument);
+}
+
+// A smaller turn than the bound (30 deg at 0.5236 rad/s) keeps the stride, and the drop lasts
+// only until the next report: the stride after it is extrapolated again.
+TEST(HumanDeadReckoning, TheOverdueTurnBoundKeepsSmallTurnsAndEndsAtTheNextReport) {
+  HumanDeadReckoning small = StopAndTurnBack(45.0 * kDeg, 0.5236);
+  EXPECT_NEAR(small.PriorAt(4.0).world_from_body.x_m, 3.0, 1e-9);
+  HumanDeadReckoning dropped = StopAndTurnBack(45.0 * kDeg, std::numbers::pi);
+  HoldHeading(dropped, 4.0, 4.5);
+  dropped.Add(sensors::StrideSample{4.5, 0.6});  // 1.8 m, back along -x
+  HoldHeading(dropped, 4.5, 5.0);
+  dropped.Add(sensors::StrideSample{5.0, 0.6});  // 1.2 m; a pace known again
+  EXPECT_NEAR(dropped.PriorAt(5.25).world_from_body.x_m, 1.2 - 0.3, 1e-6);
+}
+
+// The jumps the estimate makes by replacing or dropping its extrapolated stride are summed for the
+// laser odometry (keyframe_absorbs_stride_jumps); steady walking and a first report (no pace yet,
+// all new motion) add none.
+TEST(HumanDeadReckoning, SumsTheJumpsOfReplacedAndDroppedExtrapolations) {
+  HumanDeadReckoning carried = StopAndTurnBack(0.0, std::numbers::pi);
+  EXPECT_NEAR(carried.extrapolation_jumps_m().norm(), 0.0, 1e-9);
+  HoldHeading(carried, 4.0, 4.5);
+  carried.Add(sensors::StrideSample{4.5, 0.3});  // 3.0 m carried on -> 2.1 m
+  EXPECT_NEAR(carried.extrapolation_jumps_m().x(), -0.9, 1e-6);
+  EXPECT_NEAR(carried.extrapolation_jumps_m().y(), 0.0, 1e-6);
+  HumanDeadReckoning dropped = StopAndTurnBack(45.0 * kDeg, std::numbers::pi);
+  EXPECT_NEAR(dropped.extrapolation_jumps_m().x(), -0.6, 1e-6);  // the dropped stride
+  HoldHeading(dropped, 4.0, 4.5);
+  dropped.Add(sensors::StrideSample{4.5, 0.3});
+  EXPECT_NEAR(dropped.extrapolation_jumps_m().x(), -0.9, 1e-6);
+}
+
 // Turning while walking: the stride in progress is the chord of the arc, along the mean heading.
 TEST(HumanDeadReckoning, TheStrideInProgressFollowsTheChordOfATurn) {
   HumanDeadReckoning dead_reckoning(Carried(), StartAt(0.0, 0.0, 0.0));

@@ -54,6 +54,7 @@ std::map<std::string, double*> SettableOptions(odometry::LaserOdometryOptions& o
           {"dead_reckoning.stopped_stride_fraction", &o.dead_reckoning.stopped_stride_fraction},
           {"dead_reckoning.turning_on_the_spot_rad_s",
            &o.dead_reckoning.turning_on_the_spot_rad_s},
+          {"dead_reckoning.overdue_turn_rad", &o.dead_reckoning.overdue_turn_rad},
           {"dead_reckoning.stride_calibration.interval_m",
            &o.dead_reckoning.stride_calibration.interval_m},
           {"dead_reckoning.stride_calibration.prior_weight_m2",
@@ -84,7 +85,8 @@ void ApplyOdometrySettings(const std::vector<std::string>& settings,
   const std::map<std::string, bool*> flags = {
       {"dead_reckoning.stride_calibration.enabled", &o.dead_reckoning.stride_calibration.enabled},
       {"matcher.exact_refine_check", &o.matcher.exact_refine_check},
-      {"keyframe_by_place", &o.keyframe_by_place}};
+      {"keyframe_by_place", &o.keyframe_by_place},
+      {"keyframe_absorbs_stride_jumps", &o.keyframe_absorbs_stride_jumps}};
   for (const std::string& setting : settings) {
     const auto [name, value] = ParseSetting(setting);
     if (const auto d = doubles.find(name); d != doubles.end()) {

@@ -38,6 +38,10 @@ HumanDeadReckoning::HumanDeadReckoning(const HumanDeadReckoningOptions& options,
         "human_dead_reckoning.turning_on_the_spot_rad_s must be >= 0 rad/s, got " +
         std::to_string(options.turning_on_the_spot_rad_s));
   }
+  if (!(options.overdue_turn_rad >= 0.0)) {
+    throw std::invalid_argument("human_dead_reckoning.overdue_turn_rad must be >= 0 rad, got " +
+                                std::to_string(options.overdue_turn_rad));
+  }
   if (!(options.max_stride_m > 0.0)) {
     throw std::invalid_argument("human_dead_reckoning.max_stride_m must be > 0 m, got " +
                                 std::to_string(options.max_stride_m));
@@ -51,6 +55,7 @@ DeadReckoningEvent HumanDeadReckoning::Add(const sensors::SensorRecord& record) 
     const HeadingEvent event = heading_.Predict(*gyro);
     if (event == HeadingEvent::kNone) NoteTurning(from_s, from_heading_rad, *gyro);
     NoteStrideDue(gyro->stamp_s);
+    NoteOverdueTurn(gyro->stamp_s);
     if (event == HeadingEvent::kGyroGap) return Count(DeadReckoningEvent::kGyroGap);
     if (event == HeadingEvent::kOutOfOrder) return Count(DeadReckoningEvent::kOutOfOrder);
     return DeadReckoningEvent::kNone;
@@ -58,6 +63,7 @@ DeadReckoningEvent HumanDeadReckoning::Add(const sensors::SensorRecord& record) 
   if (const auto* compass = std::get_if<sensors::CompassSample>(&record)) {
     const HeadingEvent event = heading_.Update(*compass);
     NoteStrideDue(compass->stamp_s);
+    NoteOverdueTurn(compass->stamp_s);
     return event == HeadingEvent::kNone ? DeadReckoningEvent::kNone
                                         : Count(DeadReckoningEvent::kCompassRejected);
   }
@@ -70,6 +76,10 @@ DeadReckoningEvent HumanDeadReckoning::AddStride(const sensors::StrideSample& st
   if (!(stride.length_m >= 0.0 && stride.length_m <= options_.max_stride_m)) {
     return Count(DeadReckoningEvent::kStrideRejected);
   }
+  // What the estimate had extrapolated by now (nothing without a known pace: then the report is
+  // all new motion, and no jump is counted).
+  const bool extrapolating = PaceKnown();
+  const Eigen::Vector2d ahead_m = calibration_.scale() * AheadRawM(stride.stamp_s);
   last_stride_period_s_ = stride.stamp_s - last_stride_stamp_s_;
   last_stride_stamp_s_ = stride.stamp_s;
   last_stride_m_ = stride.length_m;
@@ -80,10 +90,12 @@ DeadReckoningEvent HumanDeadReckoning::AddStride(const sensors::StrideSample& st
   due_heading_rad_.reset();
   turning_s_ = 0.0;
   turn_start_heading_rad_.reset();
+  stride_dropped_ = false;
   const Eigen::Vector2d direction(std::cos(heading), std::sin(heading));
   const Eigen::Vector2d normal(-direction.y(), direction.x());
   const double length_m = calibration_.scale() * stride.length_m;
   position_m_ += length_m * direction;
+  if (extrapolating) extrapolation_jumps_m_ += length_m * direction - ahead_m;
   raw_walk_m_ += stride.length_m * direction;
   const double length_sigma_m = options_.stride_sigma_fraction * length_m;
   const double lateral_sigma_m = length_m * heading_.heading_sigma_rad();
@@ -114,6 +126,16 @@ void HumanDeadReckoning::NoteStrideDue(double stamp_s) {
   }
 }
 
+void HumanDeadReckoning::NoteOverdueTurn(double stamp_s) {
+  if (options_.overdue_turn_rad <= 0.0 || stride_dropped_ || !PaceKnown()) return;
+  if (stamp_s < last_stride_stamp_s_ + last_stride_period_s_) return;  // not overdue yet
+  const double turned_rad =
+      geometry::NormalizeAngle(heading_.HeadingAt(stamp_s) - last_stride_heading_rad_);
+  if (std::abs(turned_rad) <= options_.overdue_turn_rad) return;
+  extrapolation_jumps_m_ -= calibration_.scale() * AheadRawM(stamp_s);  // the prior steps back
+  stride_dropped_ = true;
+}
+
 void HumanDeadReckoning::NoteTurning(double from_s, double from_heading_rad,
                                      const sensors::GyroSample& gyro) {
   if (options_.turning_on_the_spot_rad_s <= 0.0 || !PaceKnown()) return;
@@ -139,7 +161,7 @@ double HumanDeadReckoning::AheadFraction(double stamp_s) const {
 }
 
 Eigen::Vector2d HumanDeadReckoning::AheadRawM(double stamp_s) const {
-  if (!PaceKnown()) return Eigen::Vector2d::Zero();
+  if (!PaceKnown() || stride_dropped_) return Eigen::Vector2d::Zero();
   const double since_s = stamp_s - last_stride_stamp_s_;
   if (!(since_s > 0.0)) return Eigen::Vector2d::Zero();
   const double fraction = AheadFraction(stamp_s);
@@ -168,6 +190,12 @@ PosePrior HumanDeadReckoning::PriorAt(double stamp_s) const {
   prior.world_from_body = {position.x(), position.y(), heading};
   // The pace may have changed (or the walker stopped): half the extrapolated distance, 1 sigma.
   prior.covariance.topLeftCorner<2, 2>() = position_covariance_ + 0.25 * ahead_m * ahead_m.transpose();
+  if (stride_dropped_) {
+    // The dropped stride: anything from none to a whole stride, in any direction.
+    const double half_stride_m = 0.5 * calibration_.scale() * last_stride_m_;
+    prior.covariance.topLeftCorner<2, 2>() +=
+        half_stride_m * half_stride_m * Eigen::Matrix2d::Identity();
+  }
   prior.covariance(2, 2) = std::pow(heading_.heading_sigma_rad(), 2);
   return prior;
 }

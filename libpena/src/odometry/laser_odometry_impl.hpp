@@ -100,6 +100,8 @@ struct LaserOdometry::Impl {
 
   OdometryEstimate AddScan(const sensors::LaserScan& scan);
   geometry::Pose2 Predict(const sensors::LaserScan& scan);
+  // keyframe_absorbs_stride_jumps: moves the keyframe's (and a held candidate's) motion pose.
+  void AbsorbStrideJump(const Eigen::Vector2d& jump_m);
   void Match(const scan_matching::Points2& points, OdometryEstimate& out);
   scan_matching::MatchResult Search(const scan_matching::Points2& points,
                                     const geometry::Pose2& prior, OdometryEstimate& out);

@@ -28,6 +28,10 @@ class MotionTracker {
   // stride scale is calibrated over stretches fixed throughout (HumanDeadReckoning::AddPositionFix).
   void AddPositionFix(double stamp_s, const geometry::Pose2& world_from_body, bool fixed);
 
+  // Dead reckoning: the jumps it made between the previous scan and the last one given to
+  // TakeIncrement by replacing or dropping its extrapolated stride (world frame; zero otherwise).
+  const Eigen::Vector2d& stride_jump_m() const { return stride_jump_m_; }
+
   MotionPrior mode() const { return mode_; }
   // The heading filter's standard deviation at the last scan given to TakeIncrement (dead
   // reckoning only: nullopt otherwise).
@@ -44,6 +48,8 @@ class MotionTracker {
   dead_reckoning::HumanDeadReckoning dead_reckoning_;
   std::optional<geometry::Pose2> last_odometry_pose_;     // at the previous scan
   std::optional<double> heading_sigma_rad_;               // at the previous scan
+  Eigen::Vector2d stride_jump_m_ = Eigen::Vector2d::Zero();   // see stride_jump_m()
+  Eigen::Vector2d jumps_so_far_m_ = Eigen::Vector2d::Zero();  // the dead reckoning's sum then
   std::optional<sensors::WheelOdometry> previous_wheel_, latest_wheel_;
   double stride_sum_m_ = 0.0;                             // since the previous scan
   std::optional<double> last_compass_rejected_s_;

@@ -38,6 +38,14 @@ struct HumanDeadReckoningOptions {
   // advance, and it keeps the heading it had when the turn started (0, the default: always
   // advances; 1 rad/s measured with the above in docs/dead-reckoning.md).
   double turning_on_the_spot_rad_s = 0.0;
+  // A walker whose next report is overdue and whose heading has turned by more than this since the
+  // last report is turning on the spot (or walking on slowly through a turn): the direction and
+  // length of the stride in progress are unknown, so it is dropped (the position goes back to the
+  // last report, its covariance widened by half a stride) until the next report. Carried on, it
+  // moves the prior by up to a stride the walker never walked (the next report replaces it with a
+  // stride along the new heading), and a keyframe taken meanwhile keeps that jump. 0 (the
+  // default): never dropped; 0.7854 (45 deg) measured in docs/dead-reckoning.md.
+  double overdue_turn_rad = 0.0;
   // The stride scale learnt from position fixes (AddPositionFix), applied to every stride.
   StrideCalibrationOptions stride_calibration;
 };
@@ -87,6 +95,13 @@ class HumanDeadReckoning {
   // Calibrates the stride scale (StrideCalibration); the estimate itself is not changed.
   void AddPositionFix(double stamp_s, const Eigen::Vector2d& world_position_m, bool continuous);
 
+  // The sum of the jumps the estimate made when a stride report replaced the extrapolated stride
+  // in progress, or overdue_turn_rad dropped it (world frame, m): corrections of a guess about
+  // the past, not motion. A pose taken before such a jump can be moved by the change in this sum
+  // (LaserOdometryOptions::keyframe_absorbs_stride_jumps). Reports without a known pace (nothing
+  // extrapolated: new motion) add nothing.
+  const Eigen::Vector2d& extrapolation_jumps_m() const { return extrapolation_jumps_m_; }
+
   // The scale applied to the stride sensor's lengths (1 until calibrated).
   double stride_scale() const { return calibration_.scale(); }
 
@@ -99,6 +114,8 @@ class HumanDeadReckoning {
   // Remembers the heading when the next stride report became due (called with every gyro and
   // compass sample).
   void NoteStrideDue(double stamp_s);
+  // Drops the stride in progress once overdue and turned by more than overdue_turn_rad.
+  void NoteOverdueTurn(double stamp_s);
   // Adds the part of a gyro interval (from from_s, heading then from_heading_rad) after the last
   // report to turning_s_ if it turned on the spot.
   void NoteTurning(double from_s, double from_heading_rad, const sensors::GyroSample& gyro);
@@ -120,9 +137,11 @@ class HumanDeadReckoning {
   std::optional<double> due_heading_rad_;       // heading when the next report became due
   double turning_s_ = 0.0;  // time since the last report spent turning on the spot
   std::optional<double> turn_start_heading_rad_;  // heading when that turning started
+  bool stride_dropped_ = false;  // overdue and turned on the spot: no extrapolation until a report
   DeadReckoningCounts counts_;
   StrideCalibration calibration_;
   Eigen::Vector2d raw_walk_m_ = Eigen::Vector2d::Zero();  // unscaled strides along the heading
+  Eigen::Vector2d extrapolation_jumps_m_ = Eigen::Vector2d::Zero();  // see extrapolation_jumps_m()
 };
 
 }  // namespace pena::dead_reckoning

@@ -158,6 +158,13 @@ struct LaserOdometryOptions {
   // scan is handled like a failed match with that heading (see prior_gate_fallback_scans). 0: off.
   double heading_bound_rad = 0.0;
   int heading_bound_scans = 3;
+  // People only (dead reckoning): the priors are anchored at the keyframe's dead-reckoning pose,
+  // so when a stride report replaces the extrapolated stride in progress (or
+  // dead_reckoning.overdue_turn_rad drops it) after a keyframe, the jump (a corrected guess about
+  // the past, up to 0.9 m after turns on the spot: team3 ff3 at 39.5 s) reads as motion since
+  // that keyframe. On: the keyframe's paired pose is moved by the same jump, so the prior does not
+  // jump. Off by default: measured worse on office/loop170 (docs/odometry.md, twelfth round d2).
+  bool keyframe_absorbs_stride_jumps = false;
   // ... except within this long after the heading filter rejected a compass reading (a
   // magnetic disturbance: the prior's heading is bent, the scans win on the count alone).
   double prior_gate_compass_window_s = 1.0;
