@@ -126,6 +126,55 @@ TEST(LocalisationChain, CompassStartAnchorsTheWalkFromTheEntrance) {
   EXPECT_NEAR(geometry::NormalizeAngle(anchor.estimate->theta_rad - anchor.truth.theta_rad), 0.0, 3.0 * kDeg);
 }
 
+// Runs the log from `start` with the chain started at `offset` from the true start pose (body
+// frame) for `scans` scans; returns the last estimate, the true pose then and whether a round
+// reported the entity relocalised.
+struct OffStart {
+  geometry::Pose2 estimate;
+  geometry::Pose2 truth;
+  bool relocalised = false;
+};
+OffStart RunFromWrongStart(int relocalise_after_rounds, const geometry::Pose2& offset, double start_stamp_s,
+                           int scans) {
+  const sim::EntityRecording& entity = OfficeMission().entities.front();
+  const sim::Scenario office = testing::OfficeScenario();
+  const std::size_t start = StartAt(entity, start_stamp_s);
+  const auto& first = std::get<sensors::GroundTruth>(entity.records[start]);
+  LocalisationChainOptions options;
+  options.relocalise_after_rounds = relocalise_after_rounds;
+  LocalisationChain chain(options, entity.kind, *office.apriori, geometry::Compose(first.world_from_body, offset),
+                          first.stamp_s);
+  OffStart out;
+  for (std::size_t i = start + 1; i < entity.records.size() && scans > 0; ++i) {
+    if (const auto* t = std::get_if<sensors::GroundTruth>(&entity.records[i])) {
+      out.truth = t->world_from_body;
+      continue;
+    }
+    const auto pose = chain.Add(entity.records[i]);
+    if (!pose) continue;
+    --scans;
+    out.estimate = pose->map_from_body;
+    out.relocalised = out.relocalised || pose->status == MapStatus::kRelocalised;
+  }
+  return out;
+}
+
+// An entity put 3 m off across the mapped corridor and 30 deg off in heading is beyond the plan
+// window (3.2 m x 20 deg at most): the plan rounds fail for good. With relocalisation the whole
+// plan is searched after a few lost rounds and the walk east along the main corridor (office
+// seed 1 from 152 s) finds it again.
+TEST(LocalisationChain, ALostEntityInAMappedCorridorIsRelocalised) {
+  const geometry::Pose2 offset{0.0, 3.0, 30.0 * kDeg};
+  const OffStart lost = RunFromWrongStart(0, offset, 152.0, 150);
+  EXPECT_GT(std::hypot(lost.estimate.x_m - lost.truth.x_m, lost.estimate.y_m - lost.truth.y_m), 1.0);
+  EXPECT_FALSE(lost.relocalised);
+  const OffStart found = RunFromWrongStart(3, offset, 152.0, 150);
+  EXPECT_TRUE(found.relocalised);
+  EXPECT_NEAR(found.estimate.x_m, found.truth.x_m, 0.3);
+  EXPECT_NEAR(found.estimate.y_m, found.truth.y_m, 0.3);
+  EXPECT_NEAR(geometry::NormalizeAngle(found.estimate.theta_rad - found.truth.theta_rad), 0.0, 3.0 * kDeg);
+}
+
 TEST(LocalisationChainOptions, RejectsBadValues) {
   const sim::Scenario office = testing::OfficeScenario();
   LocalisationChainOptions options = UnknownStart(-0.1);
@@ -133,6 +182,10 @@ TEST(LocalisationChainOptions, RejectsBadValues) {
                std::invalid_argument);
   options = UnknownStart(0.5);
   options.compass_wait_s = -1.0;
+  EXPECT_THROW(LocalisationChain(options, sensors::EntityKind::kHuman, *office.apriori, {}, 0.0),
+               std::invalid_argument);
+  options = LocalisationChainOptions{};
+  options.relocalise_after_rounds = -1;
   EXPECT_THROW(LocalisationChain(options, sensors::EntityKind::kHuman, *office.apriori, {}, 0.0),
                std::invalid_argument);
 }

@@ -49,7 +49,8 @@ geometry::Pose2 ParsePose(const std::string& text, const std::string& option) {
 // Applies --set NAME=VALUE to the plan-matching options (names as in MapLocaliserOptions) and,
 // prefixed "odometry.", to the odometry underneath (the names of `pena odometry --set`), and
 // global.compass_tolerance_deg (LocalisationChainOptions::compass_tolerance_rad, in degrees),
-// global.freeze_history_keyframes and global.boundary_fraction (GlobalTrackerOptions);
+// global.freeze_history_keyframes and global.boundary_fraction (GlobalTrackerOptions) and
+// relocalise_after_rounds (LocalisationChainOptions, plan rounds; 0 = off);
 // integer options are rounded; unknown names are errors. The options are validated by
 // MapLocaliser's constructor as usual.
 void ApplySettings(const std::vector<std::string>& settings, localisation::LocalisationChainOptions& chain) {
@@ -84,6 +85,8 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
       chain.tracker.freeze_history_keyframes = static_cast<int>(std::lround(value));
     } else if (name == "global.boundary_fraction") {
       chain.tracker.boundary_fraction = value;
+    } else if (name == "relocalise_after_rounds") {
+      chain.relocalise_after_rounds = static_cast<int>(std::lround(value));
     } else if (name == "window.size_xy_m") {
       o.window.size_x_m = o.window.size_y_m = value;
     } else if (name == "max_window.size_xy_m") {

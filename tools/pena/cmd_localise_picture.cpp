@@ -35,7 +35,7 @@ cv::Mat Picture(const Run& run, const std::vector<geometry::Segment2>& plan, con
                        outside ? viz::colors::kRed : viz::colors::kBlue, 2);
   }
   for (const auto& r : run.rounds) {
-    if (r.status == localisation::MapStatus::kReacquired) {
+    if (r.status == localisation::MapStatus::kReacquired || r.status == localisation::MapStatus::kRelocalised) {
       canvas.DrawCircle({r.map_from_body_after.x_m, r.map_from_body_after.y_m}, 0.4, viz::colors::kPurple, 2);
     }
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -40,6 +41,14 @@ void Validate(const LocalisationChainOptions& o) {
     throw std::invalid_argument("localisation_chain.compass_wait_s must be >= 0 s, got " +
                                 std::to_string(o.compass_wait_s));
   }
+  if (o.relocalise_after_rounds < 0) {
+    throw std::invalid_argument("localisation_chain.relocalise_after_rounds must be >= 0 rounds, got " +
+                                std::to_string(o.relocalise_after_rounds));
+  }
+  if (!(o.relocalise_compass_tolerance_rad > 0.0) || !std::isfinite(o.relocalise_compass_tolerance_rad)) {
+    throw std::invalid_argument("localisation_chain.relocalise_compass_tolerance_rad must be > 0 rad, got " +
+                                std::to_string(o.relocalise_compass_tolerance_rad));
+  }
 }
 
 }  // namespace
@@ -54,6 +63,45 @@ struct LocalisationChain::Impl {
   bool anchored = true;
   double start_stamp_s = 0.0;
   bool waiting_for_compass = false;  // unknown start with a compass: no scan used before it
+  std::unique_ptr<GlobalTracker> relocaliser;  // while lost (relocalise_after_rounds)
+  int lost_rounds = 0;  // plan rounds in a row rejected with the window at its maximum
+  std::optional<double> compass_heading_rad;  // the latest compass reading (mission frame)
+
+  // Counts the lost rounds; starts following global hypotheses after relocalise_after_rounds of
+  // them and stops as soon as a plan round is accepted (the entity was re-acquired on its own).
+  void WatchLost(const MapCorrection& round) {
+    const scan_matching::SearchWindow& max = options.map.max_window;
+    const bool at_max = round.window_xy_m >= std::max(max.size_x_m, max.size_y_m) &&
+                        round.window_theta_rad >= max.size_theta_rad;
+    lost_rounds = !round.accepted && at_max ? lost_rounds + 1 : 0;
+    if (lost_rounds == 0) {
+      relocaliser.reset();
+    } else if (lost_rounds >= options.relocalise_after_rounds && !relocaliser && compass_heading_rad) {
+      // Every heading: the loss may be a heading error beyond the window (office seed 13).
+      if (!global) global = std::make_unique<GlobalLocaliser>(map.scanner().segments(), options.global);
+      relocaliser = std::make_unique<GlobalTracker>(*global, options.tracker);
+    }
+  }
+
+  // Lost: the keyframe feeds the global hypotheses; when one wins, the odometry restarts at it on
+  // the plan (as after a global start) and a forced round checks it, reported as relocalised.
+  void TryRelocalise(const sensors::SensorRecord& record, const sensors::LaserScan& scan, LocalisedPose& out) {
+    out.relocalising = true;
+    const TrackerUpdate update = relocaliser->Update(scan, out.odometry.world_from_body);
+    if (!update.decided) return;
+    const double off_compass_rad =
+        std::abs(geometry::NormalizeAngle(update.decided->map_from_body.theta_rad - *compass_heading_rad));
+    if (off_compass_rad > options.relocalise_compass_tolerance_rad) {
+      relocaliser = std::make_unique<GlobalTracker>(*global, options.tracker);
+      return;
+    }
+    odometry = odometry::LaserOdometry(options.odometry, kind, update.decided->map_from_body, scan.stamp_s);
+    if (const auto restarted = odometry.Add(record)) out.odometry = *restarted;
+    map.Relocalise(geometry::Pose2{});
+    relocaliser.reset();
+    lost_rounds = 0;
+    out.correction = map.Update(scan, out.odometry, true);
+  }
 
   // Unknown start: hypotheses are followed over keyframes until one wins (section 4 needs a known
   // start; this supplies it). Then the odometry restarts at the winner on the plan, with the
@@ -109,7 +157,7 @@ LocalisationChain::LocalisationChain(const LocalisationChainOptions& options,
                               unknown ? geometry::Pose2{} : map_from_start, start_stamp_s),
       MapLocaliser(options.map, std::move(plan), geometry::Pose2{}), std::move(global), std::move(tracker),
       !unknown, start_stamp_s,
-      unknown && options.compass_tolerance_rad > 0.0 && HasCompass(options.odometry, kind)});
+      unknown && options.compass_tolerance_rad > 0.0 && HasCompass(options.odometry, kind), nullptr, 0, std::nullopt});
 }
 
 LocalisationChain::~LocalisationChain() = default;
@@ -118,6 +166,7 @@ LocalisationChain& LocalisationChain::operator=(LocalisationChain&&) noexcept = 
 
 std::optional<LocalisedPose> LocalisationChain::Add(const sensors::SensorRecord& record) {
   if (impl_->waiting_for_compass && !impl_->AwaitCompass(record)) return std::nullopt;
+  if (const auto* compass = std::get_if<sensors::CompassSample>(&record)) impl_->compass_heading_rad = compass->heading_rad;
   std::optional<odometry::OdometryEstimate> estimate = impl_->odometry.Add(record);
   if (!estimate) return std::nullopt;
   const auto& scan = std::get<sensors::LaserScan>(record);
@@ -130,6 +179,10 @@ std::optional<LocalisedPose> LocalisationChain::Add(const sensors::SensorRecord&
     // Right after anchoring (or at the first scan) a round checks the start against the plan.
     const bool force = first || out.global.has_value();
     out.correction = impl_->map.Update(scan, out.odometry, force);
+    if (impl_->options.relocalise_after_rounds > 0 && out.correction) {
+      impl_->WatchLost(*out.correction);
+      if (impl_->relocaliser && estimate->reference_changed) impl_->TryRelocalise(record, scan, out);
+    }
   }
   out.map_from_body = impl_->anchored ? impl_->map.map_from_body()
                                       : impl_->map.MapFromBody(out.odometry.world_from_body);

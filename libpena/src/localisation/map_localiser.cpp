@@ -101,6 +101,7 @@ struct MapLocaliser::Impl {
   std::optional<geometry::Pose2> last_odom;
   // The pose on the plan at the last scan (the output).
   geometry::Pose2 pose;
+  bool relocalised = false;  // Relocalise was called: the next round says so
 
   // Real returns in the body (laser) frame within the usable range band.
   scan_matching::Points2 RealPoints(const sensors::LaserScan& scan) const {
@@ -199,7 +200,9 @@ void MapLocaliser::Impl::Conclude(const geometry::Pose2& odom_from_body, MapCorr
   if (round.accepted) {
     map_from_odom = geometry::Compose(round.map_from_body_after, geometry::Inverse(odom_from_body));
     pose = geometry::Compose(map_from_odom, odom_from_body);
-    status = status == MapStatus::kOutsideMap ? MapStatus::kReacquired : MapStatus::kInMap;
+    status = relocalised                          ? MapStatus::kRelocalised
+             : status == MapStatus::kOutsideMap ? MapStatus::kReacquired
+                                                : MapStatus::kInMap;
     failures = 0;
     distance_m = 0.0;
     window = options.window;
@@ -207,7 +210,9 @@ void MapLocaliser::Impl::Conclude(const geometry::Pose2& odom_from_body, MapCorr
     ++failures;
     if (failures >= options.outside_after_failures) status = MapStatus::kOutsideMap;
     window = Grown(window, options.max_window, options.window_growth);
+    if (relocalised) status = MapStatus::kRelocalised;
   }
+  relocalised = false;
   round.status = status;
 }
 
@@ -291,7 +296,7 @@ MapLocaliser::MapLocaliser(const MapLocaliserOptions& options, std::vector<geome
   Validate(options);
   impl_ = std::make_unique<Impl>(Impl{options, VirtualScanner(std::move(plan), options.scanner),
                                       map_from_odom, MapStatus::kUnknown, options.window, 0, 0.0,
-                                      std::nullopt, map_from_odom});
+                                      std::nullopt, map_from_odom, false});
 }
 
 MapLocaliser::~MapLocaliser() = default;
@@ -325,6 +330,11 @@ void MapLocaliser::Reset(const geometry::Pose2& map_from_odom) {
   impl_->pose = map_from_odom;
 }
 
+void MapLocaliser::Relocalise(const geometry::Pose2& map_from_odom) {
+  Reset(map_from_odom);
+  impl_->relocalised = true;
+}
+
 MapStatus MapLocaliser::status() const { return impl_->status; }
 double MapLocaliser::distance_since_correction_m() const { return impl_->distance_m; }
 const VirtualScanner& MapLocaliser::scanner() const { return impl_->scanner; }
@@ -335,6 +345,7 @@ const char* ToString(MapStatus status) {
     case MapStatus::kInMap: return "in_map";
     case MapStatus::kOutsideMap: return "outside_map";
     case MapStatus::kReacquired: return "reacquired";
+    case MapStatus::kRelocalised: return "relocalised";
   }
   return "unknown";
 }

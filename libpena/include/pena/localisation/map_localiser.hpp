@@ -70,6 +70,7 @@ enum class MapStatus {
   kInMap,       // the last round matched
   kOutsideMap,  // outside_after_failures rounds in a row failed: on odometry alone
   kReacquired,  // the first good round after being outside
+  kRelocalised, // placed anew on the plan after being lost (LocalisationChainOptions::relocalise_after_rounds)
 };
 
 // One match round against the plan (at a reference change of the odometry).
@@ -118,6 +119,8 @@ class MapLocaliser {
   const geometry::Pose2& map_from_odom() const;
   // Re-anchors the odometry frame on the plan (after a global localisation); status -> unknown.
   void Reset(const geometry::Pose2& map_from_odom);
+  // The same for a lost entity placed anew: the next round reports kRelocalised.
+  void Relocalise(const geometry::Pose2& map_from_odom);
   MapStatus status() const;
   // Walked distance in metres since the last accepted correction.
   double distance_since_correction_m() const;
@@ -128,7 +131,7 @@ class MapLocaliser {
   std::unique_ptr<Impl> impl_;
 };
 
-// "unknown", "in_map", "outside_map", "reacquired".
+// "unknown", "in_map", "outside_map", "reacquired", "relocalised".
 const char* ToString(MapStatus status);
 
 }  // namespace pena::localisation
