@@ -77,7 +77,10 @@ TEST(FrozenOdometry, FrozenScansArePredictedAtConstantVelocityAndTheCatchUpIsNot
 
   // Without the option the frozen scans are predicted where the odometry stopped, and a keyframe
   // taken meanwhile is paired with the frozen pose: the catch-up overshoots.
-  const std::vector<OdometryEstimate> plain = Replay(records, {});
+  LaserOdometryOptions off;
+  off.frozen_odometry_min_turn_rad = 0.0;
+  off.frozen_odometry_min_move_m = 0.0;
+  const std::vector<OdometryEstimate> plain = Replay(records, off);
   ASSERT_EQ(plain.size(), Robot().truth.size());
   EXPECT_GT(WorstPriorHeadingErrorRad(plain, first), 0.5 * frozen_turn_rad);
 
@@ -94,6 +97,14 @@ TEST(FrozenOdometry, FrozenScansArePredictedAtConstantVelocityAndTheCatchUpIsNot
       geometry::NormalizeAngle(estimates.back().world_from_body.theta_rad -
                                Robot().truth.back().world_from_body.theta_rad);
   EXPECT_LT(std::abs(end_error_rad), 2.0 * kDeg);
+}
+
+// A robot's defaults (session 11: 1 deg, 0.15 m) handle the freeze too.
+TEST(FrozenOdometry, TheRobotDefaultsHandleAFreeze) {
+  const std::size_t first = FastestTurnStart();
+  const std::vector<OdometryEstimate> estimates = Replay(WithFrozenOdometry(first), {});
+  ASSERT_EQ(estimates.size(), Robot().truth.size());
+  EXPECT_LT(WorstPriorHeadingErrorRad(estimates, first), 3.0 * kDeg);
 }
 
 TEST(FrozenOdometry, OptionsAreChecked) {

@@ -86,7 +86,8 @@ void ApplyOdometrySettings(const std::vector<std::string>& settings,
       {"dead_reckoning.stride_calibration.enabled", &o.dead_reckoning.stride_calibration.enabled},
       {"matcher.exact_refine_check", &o.matcher.exact_refine_check},
       {"keyframe_by_place", &o.keyframe_by_place},
-      {"keyframe_absorbs_stride_jumps", &o.keyframe_absorbs_stride_jumps}};
+      {"keyframe_absorbs_stride_jumps", &o.keyframe_absorbs_stride_jumps},
+      {"local_map_place_fill_recent", &o.local_map_place_fill_recent}};
   for (const std::string& setting : settings) {
     const auto [name, value] = ParseSetting(setting);
     if (const auto d = doubles.find(name); d != doubles.end()) {

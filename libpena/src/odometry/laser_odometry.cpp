@@ -15,6 +15,16 @@ bool ResolveConfirm(LaserOdometryOptions::Confirm confirm, sensors::EntityKind k
   return confirm == LaserOdometryOptions::Confirm::kAlways;
 }
 
+// The reference chosen by place is the robots' default (session 11: with the frozen-odometry
+// handling better on all three Freiburg logs); people keep recency (mixed, twelfth round b).
+LaserOdometryOptions ForEntity(LaserOdometryOptions options, sensors::EntityKind kind) {
+  if (options.local_map_pool_keyframes == LaserOdometryOptions::kAutoPoolKeyframes) {
+    options.local_map_pool_keyframes =
+        kind == sensors::EntityKind::kRobot ? LaserOdometryOptions::kRobotPoolKeyframes : 0;
+  }
+  return options;
+}
+
 MotionPrior Resolve(MotionPrior prior, sensors::EntityKind kind) {
   if (prior != MotionPrior::kAuto) return prior;
   return kind == sensors::EntityKind::kHuman ? MotionPrior::kDeadReckoning : MotionPrior::kOdometry;
@@ -54,7 +64,7 @@ bool KeepPriorAlongWeakDirection(const Eigen::Matrix3d& information,
 
 LaserOdometry::LaserOdometry(const LaserOdometryOptions& options, sensors::EntityKind kind,
                              const geometry::Pose2& world_from_start, double start_stamp_s)
-    : impl_(std::make_unique<Impl>(internal::CheckedOptions(options),
+    : impl_(std::make_unique<Impl>(internal::CheckedOptions(ForEntity(options, kind)),
                                    Resolve(options.motion_prior, kind),
                                    ResolveConfirm(options.confirm_reference, kind),
                                    world_from_start, start_stamp_s)) {

@@ -23,7 +23,8 @@ namespace internal {
 
 inline PlaceChoice PlaceChoiceOf(const LaserOdometryOptions& o) {
   return {o.local_map_pool_keyframes, o.local_map_pool_age_s, o.local_map_recent_keyframes,
-          o.local_map_place_radius_m, o.keyframe_distance_m, o.keyframe_angle_rad};
+          o.local_map_place_radius_m, o.keyframe_distance_m, o.keyframe_angle_rad,
+          o.local_map_place_fill_recent};
 }
 
 }  // namespace internal

@@ -82,7 +82,19 @@ std::vector<std::int64_t> LocalMap::ChosenFor(const geometry::Pose2& world_from_
                     ranked.end());
   for (std::size_t k = 0; k < others; ++k) chosen.push_back(ids_[ranked[k].second]);
   std::sort(chosen.begin(), chosen.end());
+  if (place_.fill_recent) FillWithRecent(chosen);
   return chosen;
+}
+
+// Driving on, few pool keyframes lie within the radius: the free slots take the latest ones not
+// chosen yet, as the recency choice would (chosen stays ascending).
+void LocalMap::FillWithRecent(std::vector<std::int64_t>& chosen) const {
+  const std::size_t slots = static_cast<std::size_t>(max_keyframes_);
+  for (auto id = ids_.rbegin(); id != ids_.rend() && chosen.size() < slots; ++id) {
+    if (!std::binary_search(chosen.begin(), chosen.end(), *id)) {
+      chosen.insert(std::lower_bound(chosen.begin(), chosen.end(), *id), *id);
+    }
+  }
 }
 
 bool LocalMap::IsChosen(std::size_t index) const {

@@ -37,6 +37,9 @@ struct PlaceChoice {
   // Ranking of the others: distance / distance_scale_m + heading difference / angle_scale_rad.
   double distance_scale_m = 0.5;
   double angle_scale_rad = 0.2617993877991494;
+  // Slots left free by the place choice go to the next latest keyframes (never fewer than the
+  // recency choice's max_keyframes).
+  bool fill_recent = false;
 };
 
 // The keyframes and the reference built from max_keyframes of them.
@@ -70,6 +73,7 @@ class LocalMap {
   double Cost(const Keyframe& keyframe, const geometry::Pose2& world_from_body) const;
   bool Candidate(std::size_t index, const geometry::Pose2& world_from_body, double stamp_s) const;
   std::vector<std::int64_t> ChosenFor(const geometry::Pose2& world_from_body, double stamp_s) const;
+  void FillWithRecent(std::vector<std::int64_t>& chosen) const;
   bool IsChosen(std::size_t index) const;
 
   int max_keyframes_;

@@ -22,7 +22,8 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
   Require(o.max_range_m > o.min_range_m, "max_range_m", "> min_range_m (m)", o.max_range_m);
   Require(o.min_match_points >= 3, "min_match_points", ">= 3 points", o.min_match_points);
   Require(o.local_map_keyframes >= 1, "local_map_keyframes", ">= 1", o.local_map_keyframes);
-  Require(o.local_map_pool_keyframes >= 0, "local_map_pool_keyframes", ">= 0 (0: off)",
+  Require(o.local_map_pool_keyframes >= LaserOdometryOptions::kAutoPoolKeyframes,
+          "local_map_pool_keyframes", ">= 0 (0: off) or -1 (auto: 40 for robots, off for people)",
           o.local_map_pool_keyframes);
   Require(o.local_map_pool_age_s > 0.0, "local_map_pool_age_s", "> 0 s", o.local_map_pool_age_s);
   Require(o.local_map_recent_keyframes >= 1 &&

@@ -53,10 +53,23 @@ struct LaserOdometryOptions {
   // local_map_keyframes in all; chosen again at a scan whose best-ranked keyframe is not in it.
   // Turning back on the spot then matches the keyframe made facing that way before instead of
   // chaining new ones. The pool is a short window, not a map: no loop closure. 0: off (recency).
-  int local_map_pool_keyframes = 0;
+  // kAutoPoolKeyframes (the default): kRobotPoolKeyframes for robots (level laser, wheel
+  // odometry: together with the frozen-odometry handling below better on the five-start means
+  // of all three Freiburg logs, session 11), off for people (mixed on the simulated
+  // firefighters, twelfth round b).
+  static constexpr int kAutoPoolKeyframes = -1;
+  static constexpr int kRobotPoolKeyframes = 40;
+  int local_map_pool_keyframes = kAutoPoolKeyframes;
   double local_map_pool_age_s = 60.0;
   int local_map_recent_keyframes = 3;
   double local_map_place_radius_m = 2.0;
+  // With the place choice: slots that no keyframe within the radius and age takes are filled
+  // with the next latest keyframes, so that the reference never holds fewer keyframes than the
+  // recency choice. Without it, a robot driving on while turning has only the 3 recent keyframes
+  // plus the few within 2 m (mit-csail scan 1679: 4 instead of 8, matched at 0.44 against the
+  // recency reference's 0.83, made a keyframe 5 deg off; docs/odometry.md, session 11). Off:
+  // better on mit-csail, worse on intel and aces (five-start means, session 11).
+  bool local_map_place_fill_recent = false;
   // With the place choice: a new keyframe only when no keyframe of the reference (not only the
   // latest) lies within keyframe_distance_m and keyframe_angle_rad, or the score fell below.
   bool keyframe_by_place = false;
@@ -174,11 +187,12 @@ struct LaserOdometryOptions {
   // (mit-csail: three to four scans of zeros in a turn, then a 50-85 deg catch-up); not within a
   // burst of scans (timing_burst_*: intel repeats the pose of scans delivered together). While it
   // lasts the prior is constant velocity, and keyframes are paired with the frozen pose moved on
-  // by the estimated motion, so the catch-up is not added on top. Both 0: off. Measured with
-  // 1 deg and 0.15 m (a standing aces robot's estimate jitters by up to 0.1 m a scan):
-  // mit-csail 0.190 -> 0.151 m, aces and intel unchanged (docs/odometry.md, twelfth round).
-  double frozen_odometry_min_turn_rad = 0.0;
-  double frozen_odometry_min_move_m = 0.0;
+  // by the estimated motion, so the catch-up is not added on top. Both 0: off. 1 deg and 0.15 m
+  // (a standing aces robot's estimate jitters by up to 0.1 m a scan): mit-csail 0.190 -> 0.151 m,
+  // aces and intel unchanged (twelfth round); the default since session 11, with the robots'
+  // place choice (docs/odometry.md). People's dead reckoning is never taken for frozen.
+  double frozen_odometry_min_turn_rad = 0.0175;
+  double frozen_odometry_min_move_m = 0.15;
   // Stale scans: a scan whose ranges repeat one of the last stale_history_scans scans (median
   // beam difference at most stale_repeat_m) while differing from the previous scan by more than
   // stale_changed_m was delivered late (intel: 40 such scans, during turns on the spot). It is
