@@ -65,25 +65,34 @@ TEST(GlobalTracker, DecidesNothingBeforeEnoughKeyframes) {
   EXPECT_FALSE(update.ranked.hypotheses.empty());
 }
 
-// A walk west along the corridor and on past the plan's end wall (x = 4) into the west wing the
-// plan lacks, perfect scans of the true walls. Returns the decision and the true pose then.
+// A tracker's decision on a walk, and the true pose then.
 struct WalkResult {
   std::optional<PoseHypothesis> decided;
   geometry::Pose2 truth;
 };
-WalkResult WalkIntoTheWestWing(const GlobalTrackerOptions& options) {
+// Perfect scans of the true walls along `walk`, fed to a tracker until it decides.
+WalkResult WalkUntilDecided(const GlobalTrackerOptions& options, const std::vector<geometry::Pose2>& walk) {
   const sim::Scenario office = testing::OfficeScenario();
   const VirtualScanner truth_scanner(office.walls);
   const GlobalLocaliser localiser(*office.apriori);
   GlobalTracker tracker(localiser, options);
   const geometry::Pose2 odom_from_map{-2.0, 5.0, -30.0 * kDeg};
   WalkResult result;
-  for (int step = 0; step < 22 && !result.decided; ++step) {
-    result.truth = {13.1 - 0.5 * step, 14.0, 180.0 * kDeg};
-    const auto scan = truth_scanner.Scan(result.truth, testing::OfficeLaser(), 361);
-    result.decided = tracker.Update(scan, geometry::Compose(odom_from_map, result.truth)).decided;
+  for (const geometry::Pose2& truth : walk) {
+    result.truth = truth;
+    const auto scan = truth_scanner.Scan(truth, testing::OfficeLaser(), 361);
+    result.decided = tracker.Update(scan, geometry::Compose(odom_from_map, truth)).decided;
+    if (result.decided) break;
   }
   return result;
+}
+
+// A walk west along the corridor and on past the plan's end wall (x = 4) into the west wing the
+// plan lacks.
+WalkResult WalkIntoTheWestWing(const GlobalTrackerOptions& options) {
+  std::vector<geometry::Pose2> walk;
+  for (int step = 0; step < 22; ++step) walk.push_back({13.1 - 0.5 * step, 14.0, 180.0 * kDeg});
+  return WalkUntilDecided(options, walk);
 }
 
 // The tracker does not decide this walk at all (rather than wrongly): the look-alike 6 m east
@@ -97,22 +106,10 @@ TEST(GlobalTracker, DecidesNothingOnAWalkIntoTheUnmappedWestWing) {
 // A walk west along the corridor from x 13.1 into the west wing the plan lacks (to x 2.1), then
 // back east (0.5 m steps, perfect scans of the true walls) until `tracker` decides or x 20.
 WalkResult WalkIntoTheWestWingAndBack(const GlobalTrackerOptions& options) {
-  const sim::Scenario office = testing::OfficeScenario();
-  const VirtualScanner truth_scanner(office.walls);
-  const GlobalLocaliser localiser(*office.apriori);
-  GlobalTracker tracker(localiser, options);
-  const geometry::Pose2 odom_from_map{-2.0, 5.0, -30.0 * kDeg};
   std::vector<geometry::Pose2> walk;
   for (int step = 0; step <= 22; ++step) walk.push_back({13.1 - 0.5 * step, 14.0, 180.0 * kDeg});
   for (int step = 0; step <= 36; ++step) walk.push_back({2.1 + 0.5 * step, 14.0, 0.0});
-  WalkResult result;
-  for (const geometry::Pose2& truth : walk) {
-    result.truth = truth;
-    const auto scan = truth_scanner.Scan(truth, testing::OfficeLaser(), 361);
-    result.decided = tracker.Update(scan, geometry::Compose(odom_from_map, truth)).decided;
-    if (result.decided) break;
-  }
-  return result;
+  return WalkUntilDecided(options, walk);
 }
 
 // With the pairwise freeze the walk into the wing and back is decided, and right: while the walker
