@@ -58,7 +58,7 @@ struct LocalisationChain::Impl {
   sensors::EntityKind kind;
   odometry::LaserOdometry odometry;
   MapLocaliser map;
-  std::unique_ptr<GlobalLocaliser> global;  // only while the start is still unknown
+  std::unique_ptr<GlobalLocaliser> global;  // while the start is unknown, and once lost
   std::unique_ptr<GlobalTracker> tracker;
   bool anchored = true;
   double start_stamp_s = 0.0;
@@ -83,6 +83,14 @@ struct LocalisationChain::Impl {
     }
   }
 
+  // A global decision: the odometry starts again at the decided pose on the plan (so its frame is
+  // the plan's), with this scan as its first.
+  void RestartOdometryAt(const geometry::Pose2& map_from_body, const sensors::SensorRecord& record,
+                         const sensors::LaserScan& scan, LocalisedPose& out) {
+    odometry = odometry::LaserOdometry(options.odometry, kind, map_from_body, scan.stamp_s);
+    if (const auto restarted = odometry.Add(record)) out.odometry = *restarted;
+  }
+
   // Lost: the keyframe feeds the global hypotheses; when one wins, the odometry restarts at it on
   // the plan (as after a global start) and a forced round checks it, reported as relocalised.
   void TryRelocalise(const sensors::SensorRecord& record, const sensors::LaserScan& scan, LocalisedPose& out) {
@@ -95,8 +103,7 @@ struct LocalisationChain::Impl {
       relocaliser = std::make_unique<GlobalTracker>(*global, options.tracker);
       return;
     }
-    odometry = odometry::LaserOdometry(options.odometry, kind, update.decided->map_from_body, scan.stamp_s);
-    if (const auto restarted = odometry.Add(record)) out.odometry = *restarted;
+    RestartOdometryAt(update.decided->map_from_body, record, scan, out);
     map.Relocalise(geometry::Pose2{});
     relocaliser.reset();
     lost_rounds = 0;
@@ -111,8 +118,7 @@ struct LocalisationChain::Impl {
     out.global = update.ranked;
     out.global_searched = update.searched;
     if (!update.decided) return;
-    odometry = odometry::LaserOdometry(options.odometry, kind, update.decided->map_from_body, scan.stamp_s);
-    if (const auto restarted = odometry.Add(record)) out.odometry = *restarted;
+    RestartOdometryAt(update.decided->map_from_body, record, scan, out);
     map.Reset(geometry::Pose2{});
     anchored = true;
     tracker.reset();
