@@ -5,16 +5,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "pena/options_check.hpp"
 #include "pena/geometry/pose2.hpp"
 
 namespace pena::dead_reckoning {
 namespace {
 
 void RequirePositive(double value, const char* field, const char* unit) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string("heading_filter.") + field + " must be > 0 " + unit +
-                                ", got " + std::to_string(value));
-  }
+  RequireOption(value > 0.0 && std::isfinite(value), "heading_filter", field,
+                std::string("> 0 ") + unit, value);
 }
 
 // A person can turn at up to ~200 deg/s: over an unobserved gyro gap the heading may change by

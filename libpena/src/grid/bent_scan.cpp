@@ -3,18 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 #include <vector>
+
+#include "pena/options_check.hpp"
 
 namespace pena::grid {
 namespace {
 
 void Require(bool ok, const char* field, const char* rule, double value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "bent_scan." << field << " must be " << rule << ", got " << value;
-  throw std::invalid_argument(message.str());
+  RequireOption(ok, "bent_scan", field, rule, value);
 }
 
 }  // namespace

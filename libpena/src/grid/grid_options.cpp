@@ -1,18 +1,16 @@
 #include "pena/grid/grid_options.hpp"
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "pena/options_check.hpp"
 
 namespace pena::grid {
 namespace {
 
 void Require(bool ok, const char* field, const char* rule, double value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "grid." << field << " must be " << rule << ", got " << value;
-  throw std::invalid_argument(message.str());
+  RequireOption(ok, "grid", field, rule, value);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "extract_steps.hpp"
 #include "skeleton.hpp"
+#include "pena/options_check.hpp"
 
 namespace pena::line_map {
 
@@ -20,10 +21,7 @@ using internal::GridFrame;
 using internal::Piece;
 
 void Require(bool ok, const char* field, const char* rule, double value) {
-  if (!ok) {
-    throw std::invalid_argument(std::string("line_extraction.") + field + " must be " + rule +
-                                ", got " + std::to_string(value));
-  }
+  RequireOption(ok, "line_extraction", field, rule, value);
 }
 
 int Cells(double length_m, double resolution_m) {

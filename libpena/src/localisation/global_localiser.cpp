@@ -1,5 +1,6 @@
 #include "pena/localisation/global_localiser.hpp"
 
+#include "pena/options_check.hpp"
 #include "pena/localisation/virtual_scanner.hpp"
 
 #include <algorithm>
@@ -12,10 +13,7 @@ namespace pena::localisation {
 namespace {
 
 void Require(bool ok, const std::string& field, const std::string& rule, double value) {
-  if (!ok) {
-    throw std::invalid_argument("global_localiser." + field + " must be " + rule + ", got " +
-                                std::to_string(value));
-  }
+  RequireOption(ok, "global_localiser", field, rule, value);
 }
 
 void Validate(const GlobalLocaliserOptions& o) {

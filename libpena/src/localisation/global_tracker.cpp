@@ -7,14 +7,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "pena/options_check.hpp"
+
 namespace pena::localisation {
 namespace {
 
 void Require(bool ok, const std::string& field, const std::string& rule, double value) {
-  if (!ok) {
-    throw std::invalid_argument("global_tracker." + field + " must be " + rule + ", got " +
-                                std::to_string(value));
-  }
+  RequireOption(ok, "global_tracker", field, rule, value);
 }
 
 void Validate(const GlobalTrackerOptions& o) {

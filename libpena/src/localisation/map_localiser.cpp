@@ -7,16 +7,14 @@
 #include <string>
 #include <utility>
 
+#include "pena/options_check.hpp"
 #include "pena/scan_matching/point_set.hpp"
 
 namespace pena::localisation {
 namespace {
 
 void Require(bool ok, const std::string& field, const std::string& rule, double value) {
-  if (!ok) {
-    throw std::invalid_argument("map_localiser." + field + " must be " + rule + ", got " +
-                                std::to_string(value));
-  }
+  RequireOption(ok, "map_localiser", field, rule, value);
 }
 
 void Validate(const MapLocaliserOptions& o) {

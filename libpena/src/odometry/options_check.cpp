@@ -3,14 +3,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "pena/options_check.hpp"
+
 namespace pena::odometry::internal {
 namespace {
 
 void Require(bool ok, const char* field, const char* rule, double value) {
-  if (!ok) {
-    throw std::invalid_argument(std::string("laser_odometry.") + field + " must be " + rule +
-                                ", got " + std::to_string(value));
-  }
+  RequireOption(ok, "laser_odometry", field, rule, value);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "branch_and_bound.hpp"
 #include "least_squares_refiner.hpp"
 #include "nearest_neighbours.hpp"
+#include "pena/options_check.hpp"
 #include "pena/scan_matching/hit_grid.hpp"
 #include "window_grid.hpp"
 
@@ -15,10 +16,7 @@ namespace pena::scan_matching {
 namespace {
 
 void Require(bool ok, const std::string& field, const std::string& unit, double value) {
-  if (!ok) {
-    throw std::invalid_argument("scan_matcher." + field + " must be > 0" + unit + ", got " +
-                                std::to_string(value));
-  }
+  RequireOption(ok, "scan_matcher", field, "> 0" + unit, value);
 }
 
 }  // namespace

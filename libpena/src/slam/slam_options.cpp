@@ -4,21 +4,19 @@
 #include <stdexcept>
 #include <string>
 
+#include "pena/options_check.hpp"
+
 namespace pena::slam {
 namespace {
 
 void RequirePositive(double value, const char* field, const char* unit) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string("slam.") + field + " must be > 0 " + unit + ", got " +
-                                std::to_string(value));
-  }
+  RequireOption(value > 0.0 && std::isfinite(value), "slam", field, std::string("> 0 ") + unit,
+                value);
 }
 
 void RequireNonNegative(double value, const char* field, const char* unit) {
-  if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string("slam.") + field + " must be >= 0 " + unit +
-                                " and finite, got " + std::to_string(value));
-  }
+  RequireOption(value >= 0.0 && std::isfinite(value), "slam", field,
+                std::string(">= 0 ") + unit + " and finite", value);
 }
 
 }  // namespace
@@ -29,23 +27,13 @@ void ValidateSlamOptions(const SlamOptions& o) {
   RequireNonNegative(o.min_range_m, "min_range_m", "m");
   RequirePositive(o.max_range_m - o.min_range_m, "max_range_m - min_range_m", "m");
   RequireNonNegative(o.loop_min_path_m, "loop_min_path_m", "m");
-  if (o.submap_keyframes < 0) {
-    throw std::invalid_argument("slam.submap_keyframes must be >= 0, got " +
-                                std::to_string(o.submap_keyframes));
-  }
-  if (o.loop_check_every < 1) {
-    throw std::invalid_argument("slam.loop_check_every must be >= 1, got " +
-                                std::to_string(o.loop_check_every));
-  }
-  if (o.optimize_iterations < 1) {
-    throw std::invalid_argument("slam.optimize_iterations must be >= 1, got " +
-                                std::to_string(o.optimize_iterations));
-  }
+  RequireOption(o.submap_keyframes >= 0, "slam", "submap_keyframes", ">= 0", o.submap_keyframes);
+  RequireOption(o.loop_check_every >= 1, "slam", "loop_check_every", ">= 1", o.loop_check_every);
+  RequireOption(o.optimize_iterations >= 1, "slam", "optimize_iterations", ">= 1",
+                o.optimize_iterations);
   RequireNonNegative(o.local_min_path_m, "local_min_path_m", "m");
-  if (o.local_submap_keyframes < 1) {
-    throw std::invalid_argument("slam.local_submap_keyframes must be >= 1, got " +
-                                std::to_string(o.local_submap_keyframes));
-  }
+  RequireOption(o.local_submap_keyframes >= 1, "slam", "local_submap_keyframes", ">= 1",
+                o.local_submap_keyframes);
   RequirePositive(o.local_window_m, "local_window_m", "m");
   RequirePositive(o.local_window_rad, "local_window_rad", "rad");
   RequirePositive(o.submap_radius_m, "submap_radius_m", "m");
@@ -55,10 +43,8 @@ void ValidateSlamOptions(const SlamOptions& o) {
   RequirePositive(o.loop_window_rad, "loop_window_rad", "rad");
   RequireNonNegative(o.loop_window_rad_per_m, "loop_window_rad_per_m", "rad/m");
   RequirePositive(o.loop_window_max_rad, "loop_window_max_rad", "rad");
-  if (!(o.loop_min_score > 0.0 && o.loop_min_score <= 1.0)) {
-    throw std::invalid_argument("slam.loop_min_score must be in (0, 1], got " +
-                                std::to_string(o.loop_min_score));
-  }
+  RequireOption(o.loop_min_score > 0.0 && o.loop_min_score <= 1.0, "slam", "loop_min_score",
+                "in (0, 1]", o.loop_min_score);
   RequireNonNegative(o.degenerate_eigen_ratio, "degenerate_eigen_ratio", "(ratio)");
   RequirePositive(o.odometry_sigma_m, "odometry_sigma_m", "m");
   RequireNonNegative(o.odometry_sigma_per_m, "odometry_sigma_per_m", "m/m");
