@@ -2,7 +2,7 @@
 # Installs PeNa's Debian 12 build dependencies (only those missing) and builds into build/.
 # Idempotent: a second run installs nothing and rebuilds only what changed.
 # Environment: PENA_BUILD_DIR (default build), PENA_WERROR (ON in CI), PENA_JOBS (default nproc),
-# PENA_TARGETS (default: everything; the demo builds only what it runs).
+# PENA_TARGETS (default: everything; the demo builds only what it runs). Uses ccache if present.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -37,6 +37,9 @@ jobs=${PENA_JOBS:-$(nproc)}
 config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
 if [[ "${CI:-}" == "true" ]]; then config+=(-DPENA_WERROR=ON); fi
 if [[ -n "${PENA_WERROR:-}" ]]; then config+=(-DPENA_WERROR="$PENA_WERROR"); fi
+# ccache, when the machine has it, makes a rebuild after a branch switch or a clean checkout cheap;
+# it is not installed here, since a first build gains nothing from it.
+if command -v ccache >/dev/null 2>&1; then config+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 
 cmake -S . -B "$build_dir" "${config[@]}" >/dev/null
 targets=()
