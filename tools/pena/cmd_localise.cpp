@@ -23,6 +23,7 @@
 #include "pena/io/plan_reader.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/localisation/localisation_chain.hpp"
+#include "pena/localisation/trajectory_smoother.hpp"
 
 namespace pena::cli {
 namespace localise {
@@ -56,6 +57,7 @@ geometry::Pose2 ParsePose(const std::string& text, const std::string& option) {
 void ApplySettings(const std::vector<std::string>& settings, localisation::LocalisationChainOptions& chain) {
   localisation::MapLocaliserOptions& o = chain.map;
   constexpr std::string_view kOdometry = "odometry.";
+  constexpr std::string_view kSmooth = "smooth.";
   std::vector<std::string> odometry_settings;
   const std::map<std::string, double*> doubles = {
       {"min_score", &o.min_score},
@@ -74,6 +76,7 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                                             {"outside_after_failures", &o.outside_after_failures},
                                             {"oversample", &o.oversample}};
   for (const std::string& setting : settings) {
+    if (setting.starts_with(kSmooth)) continue;  // SmootherOptions, with --smooth
     if (setting.starts_with(kOdometry)) {
       odometry_settings.push_back(setting.substr(kOdometry.size()));
       continue;
@@ -100,6 +103,33 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
     }
   }
   ApplyOdometrySettings(odometry_settings, chain.odometry);
+}
+
+// Applies --set smooth.NAME=VALUE to the offline smoother (names as in TrajectorySmootherOptions,
+// validated by SmoothTrajectory); unknown names are errors.
+localisation::TrajectorySmootherOptions SmootherOptions(const std::vector<std::string>& settings) {
+  localisation::TrajectorySmootherOptions o;
+  const std::map<std::string, double*> doubles = {
+      {"smooth.round_sigma_m", &o.round_sigma_m},
+      {"smooth.degenerate_along_sigma_m", &o.degenerate_along_sigma_m},
+      {"smooth.odometry_sigma_m", &o.odometry_sigma_m},
+      {"smooth.odometry_sigma_per_m", &o.odometry_sigma_per_m},
+      {"smooth.odometry_sigma_rad", &o.odometry_sigma_rad},
+      {"smooth.odometry_sigma_rad_per_rad", &o.odometry_sigma_rad_per_rad},
+      {"smooth.odometry_sigma_rad_per_m", &o.odometry_sigma_rad_per_m},
+      {"smooth.start_sigma_m", &o.start_sigma_m}};
+  for (const std::string& setting : settings) {
+    if (!setting.starts_with("smooth.")) continue;
+    const auto [name, value] = ParseSetting(setting);
+    if (name == "smooth.round_sigma_deg") {
+      o.round_sigma_rad = value * kDeg;
+    } else if (const auto d = doubles.find(name); d != doubles.end()) {
+      *d->second = value;
+    } else {
+      throw std::runtime_error("--set: unknown option '" + name + "' (see docs/localisation.md)");
+    }
+  }
+  return o;
 }
 
 // The plan in the mission frame: read (CSV, SVG or DXF), scaled to metres, then moved by
@@ -155,32 +185,49 @@ Run RunChain(const LocaliseArgs& args, io::LogSource& source, std::vector<geomet
   return run;
 }
 
-void RunLocalise(const LocaliseArgs& args) {
-  const std::vector<geometry::Segment2> plan = LoadPlan(args);
-  const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
-  const std::filesystem::path out_dir(args.out);
-  std::filesystem::create_directories(out_dir);
-  const Run run = RunChain(args, *source, plan);
-  const geometry::Trajectory estimate = Trajectory(run);
-  io::WriteTum(out_dir / "trajectory.tum", estimate);
-  WriteStatusCsv(out_dir / "status.csv", run);
-  const geometry::Trajectory truth = TruthNextTo(*source);
-  std::optional<TruthErrors> errors;
-  if (!truth.empty() && !estimate.empty()) errors = CompareWithTruth(estimate, truth, plan);
-  const std::string picture = (out_dir / "localisation.png").string();
-  const std::string title = std::filesystem::path(args.log).filename().string() + " on " +
-                            std::filesystem::path(args.map).filename().string();
-  if (!cv::imwrite(picture, Picture(run, plan, truth, title))) throw std::runtime_error(picture + ": cannot write the PNG");
-  WriteSummary(out_dir / "summary.json", args, run, errors);
+// The counts and, for a simulated entity, the errors against truth.tum (with --smooth, the
+// smoothed trajectory's and the causal one's).
+void PrintResult(const LocaliseArgs& args, const Run& run, const std::optional<TruthErrors>& errors,
+                 const std::optional<TruthErrors>& online_errors) {
   const Counts c = CountRun(run);
   std::cout << run.poses.size() << " scans, " << c.rounds << " plan rounds: " << c.accepted << " accepted, "
             << c.outside_rounds << " outside the plan, " << c.reacquired << " re-acquired; "
             << Fixed(run.wall_s, 2) << " s wall\n";
   if (errors) {
     std::cout << "against truth.tum: in-map RMS " << Fixed(errors->in_map_rms_m, 3) << " m, heading "
-              << Fixed(errors->in_map_heading_rms_deg, 2) << " deg (" << errors->in_map << " scans)\n";
+              << Fixed(errors->in_map_heading_rms_deg, 2) << " deg (" << errors->in_map << " scans)"
+              << (args.smooth ? ", smoothed" : "") << '\n';
   }
-  std::cout << "wrote " << (out_dir / "trajectory.tum").string() << ", status.csv, summary.json, localisation.png\n";
+  if (online_errors) {
+    std::cout << "against truth.tum, causal (trajectory-online.tum): in-map RMS " << Fixed(online_errors->in_map_rms_m, 3)
+              << " m, heading " << Fixed(online_errors->in_map_heading_rms_deg, 2) << " deg\n";
+  }
+}
+
+void RunLocalise(const LocaliseArgs& args) {
+  const localisation::TrajectorySmootherOptions smoother = SmootherOptions(args.settings);  // names first
+  const std::vector<geometry::Segment2> plan = LoadPlan(args);
+  const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
+  const std::filesystem::path out_dir(args.out);
+  std::filesystem::create_directories(out_dir);
+  const Run run = RunChain(args, *source, plan);
+  const geometry::Trajectory online = Trajectory(run);
+  const geometry::Trajectory estimate = args.smooth ? Smoothed(run, smoother) : online;
+  io::WriteTum(out_dir / "trajectory.tum", estimate);
+  if (args.smooth) io::WriteTum(out_dir / "trajectory-online.tum", online);
+  WriteStatusCsv(out_dir / "status.csv", run);
+  const geometry::Trajectory truth = TruthNextTo(*source);
+  std::optional<TruthErrors> errors, online_errors;
+  if (!truth.empty() && !estimate.empty()) errors = CompareWithTruth(estimate, truth, plan);
+  if (args.smooth && errors) online_errors = CompareWithTruth(online, truth, plan);
+  const std::string picture = (out_dir / "localisation.png").string();
+  const std::string title = std::filesystem::path(args.log).filename().string() + " on " +
+                            std::filesystem::path(args.map).filename().string();
+  if (!cv::imwrite(picture, Picture(run, plan, truth, title))) throw std::runtime_error(picture + ": cannot write the PNG");
+  WriteSummary(out_dir / "summary.json", args, run, errors, online_errors);
+  PrintResult(args, run, errors, online_errors);
+  std::cout << "wrote " << (out_dir / "trajectory.tum").string() << (args.smooth ? ", trajectory-online.tum" : "")
+            << ", status.csv, summary.json, localisation.png\n";
 }
 
 }  // namespace
@@ -197,6 +244,9 @@ void AddLocaliseCommand(CLI::App& app) {
   command->add_flag("--global", args->global, "Unknown start: localise the first scans on the whole plan");
   command->add_flag("--every-scan", args->every_scan,
                     "Match every scan against the plan, not only at reference changes (paper)");
+  command->add_flag("--smooth", args->smooth,
+                    "Offline: smooth the whole walk (pose graph over plan rounds and odometry) into "
+                    "trajectory.tum; the causal poses go to trajectory-online.tum");
   command->add_option("--start", args->start, "Start pose X,Y,THETA_DEG on the plan (m, m, deg)");
   command->add_option("--map-scale", args->map_scale, "Plan units to metres (e.g. 0.001 for mm)")
       ->check(CLI::PositiveNumber)
@@ -213,6 +263,9 @@ void AddLocaliseCommand(CLI::App& app) {
                       "docs/localisation.md); repeatable");
   command->callback([args] {
     if (args->global && !args->start.empty()) throw std::runtime_error("--global and --start exclude each other");
+    for (const std::string& setting : args->settings) {
+      if (setting.starts_with("smooth.") && !args->smooth) throw std::runtime_error("--set " + setting + " needs --smooth");
+    }
     localise::RunLocalise(*args);
   });
 }

@@ -14,6 +14,7 @@
 #include "pena/geometry/trajectory.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/localisation/localisation_chain.hpp"
+#include "pena/localisation/trajectory_smoother.hpp"
 
 namespace pena::cli::localise {
 
@@ -24,6 +25,7 @@ struct LocaliseArgs {
   double map_scale = 1.0;
   bool global = false;
   bool every_scan = false;
+  bool smooth = false;  // --smooth: trajectory.tum smoothed offline, trajectory-online.tum causal
   bool quiet = false;
   io::ReadOptions read;
   std::vector<std::string> settings;  // --set NAME=VALUE (numeric plan-matching options, for sweeps)
@@ -59,6 +61,10 @@ struct Counts {
 // The anchored poses of the run, in the plan's frame.
 geometry::Trajectory Trajectory(const Run& run);
 
+// The anchored poses smoothed offline (localisation::SmoothTrajectory); the causal ones if the
+// optimisation failed.
+geometry::Trajectory Smoothed(const Run& run, const localisation::TrajectorySmootherOptions& options);
+
 // DIR/status.csv: one line per plan-matching round (the status timeline).
 void WriteStatusCsv(const std::filesystem::path& path, const Run& run);
 
@@ -70,8 +76,9 @@ TruthErrors CompareWithTruth(const geometry::Trajectory& estimate, const geometr
 Counts CountRun(const Run& run);
 
 // DIR/summary.json: counts, the global start's hypotheses and the errors against truth.
+// With --smooth, `truth_online` holds the causal trajectory's errors ("truth_online").
 void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, const Run& run,
-                  const std::optional<TruthErrors>& truth);
+                  const std::optional<TruthErrors>& truth, const std::optional<TruthErrors>& truth_online);
 
 // truth.tum next to a simulated entity's native log, if there is one (else empty).
 geometry::Trajectory TruthNextTo(const io::LogSource& source);

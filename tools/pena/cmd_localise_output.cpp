@@ -12,6 +12,7 @@
 #include "cmd_localise.hpp"
 #include "pena/eval/stamp_matching.hpp"
 #include "pena/io/trajectory_io.hpp"
+#include "pena/localisation/trajectory_smoother.hpp"
 
 namespace pena::cli::localise {
 namespace {
@@ -29,6 +30,14 @@ geometry::Trajectory Trajectory(const Run& run) {
   for (const auto& p : run.poses) {
     if (p.anchored) out.push_back({p.stamp_s, p.map_from_body});
   }
+  return out;
+}
+
+geometry::Trajectory Smoothed(const Run& run, const localisation::TrajectorySmootherOptions& options) {
+  geometry::Trajectory out = Trajectory(run);
+  const localisation::SmoothedTrajectory smoothed = localisation::SmoothTrajectory(run.poses, options);
+  if (!smoothed.solved) return out;
+  for (std::size_t i = 0; i < out.size(); ++i) out[i].pose = smoothed.map_from_body[i];
   return out;
 }
 
@@ -122,7 +131,7 @@ std::string TruthJson(const std::optional<TruthErrors>& e) {
 }
 
 void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, const Run& run,
-                  const std::optional<TruthErrors>& truth) {
+                  const std::optional<TruthErrors>& truth, const std::optional<TruthErrors>& truth_online) {
   const Counts c = CountRun(run);
   std::ofstream out(path);
   out << "{\"log\": " << JsonString(args.log) << ", \"map\": " << JsonString(args.map)
@@ -130,8 +139,9 @@ void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, c
       << ", \"scans\": " << run.poses.size() << ", \"rounds\": " << c.rounds << ", \"accepted\": " << c.accepted
       << ", \"reacquired\": " << c.reacquired << ", \"outside_rounds\": " << c.outside_rounds
       << ", \"outside_scans\": " << c.outside_scans << ", \"mean_confidence\": " << Fixed(c.mean_confidence, 3)
-      << ", \"global\": " << GlobalJson(run) << ", \"truth\": " << TruthJson(truth)
-      << ", \"processing_wall_s\": " << Fixed(run.wall_s, 3) << "}\n";
+      << ", \"global\": " << GlobalJson(run) << ", \"truth\": " << TruthJson(truth);
+  if (args.smooth) out << ", \"smoothed\": true, \"truth_online\": " << TruthJson(truth_online);
+  out << ", \"processing_wall_s\": " << Fixed(run.wall_s, 3) << "}\n";
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
 }
 

@@ -165,6 +165,7 @@ Found MapLocaliser::Impl::Judge(const scan_matching::MatchResult& match,
   const Eigen::Vector2d values = solver.eigenvalues();  // ascending
   round.constraint_ratio = values(1) > 0.0 ? std::max(0.0, values(0)) / values(1) : 0.0;
   const Eigen::Vector2d weak = solver.eigenvectors().col(0);
+  round.weak_axis_rad = std::atan2(weak.y(), weak.x());
   round.along_drop = AlongDrop(matcher, real, correction, weak, options.along_probe_m);
   if (round.constraint_ratio < options.degenerate_eigen_ratio && round.along_drop < options.along_min_drop) {
     // Along a corridor the point-to-line information is weak by construction; the correlation

@@ -87,6 +87,7 @@ struct MapCorrection {
   int virtual_points = 0;                   // virtual scan returns (the plan seen from there)
   double constraint_ratio = 0.0;            // min / max translation eigenvalue of J^T J
   bool degenerate = false;                  // the weak direction was taken from odometry
+  double weak_axis_rad = 0.0;               // weak translation direction, body frame (mod pi)
   double along_drop = 0.0;                  // eq. 2 fall along the weak direction (see options)
   double confidence = 0.0;                  // in [0, 1]: score x hit support x constraint
   double window_xy_m = 0.0;                 // searched window side
