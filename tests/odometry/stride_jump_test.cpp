@@ -1,10 +1,15 @@
 // keyframe_absorbs_stride_jumps: a stride report that replaces the extrapolated stride in progress
 // corrects a guess about the past; with the option it does not move a prior anchored before it.
+// keyframe_stride_jump_share: only the part of that guess made before the keyframe's stamp.
 
 #include <gtest/gtest.h>
 
 #include <numbers>
+#include <stdexcept>
+#include <string>
 #include <vector>
+
+#include "pena/dead_reckoning/human_dead_reckoning.hpp"
 
 #include "pena/odometry/laser_odometry.hpp"
 
@@ -25,10 +30,21 @@ void Gyro(std::vector<sensors::SensorRecord>& records, double from_s, double to_
   }
 }
 
+enum class Absorb { kNone, kWhole, kShare };
+
+LaserOdometryOptions PriorOnly(Absorb absorb) {
+  LaserOdometryOptions options;
+  options.match_scans = false;  // the prior alone, anchored at the first scan's keyframe
+  options.dead_reckoning.max_stride_period_s = 1.5;
+  options.keyframe_absorbs_stride_jumps = absorb != Absorb::kNone;
+  options.keyframe_stride_jump_share = absorb == Absorb::kShare;
+  return options;
+}
+
 // Team3 ff3 at 35-39.5 s: 0.6 m strides at 2 Hz along +x to 2.4 m at 2.0 s, then standing (the
 // extrapolation carries the prior a stride on, to 3.0 m), the first scan (the keyframe) at 3.0 s,
 // a 180 deg turn on the spot until 4.0 s (scan), and a 0.3 m report back along -x at 4.5 s (scan).
-std::vector<double> PriorXAtScans(bool absorb) {
+std::vector<double> PriorXAtScans(Absorb absorb) {
   std::vector<sensors::SensorRecord> records;
   for (int i = 1; i <= 4; ++i) {
     Gyro(records, (i - 1) * 0.5, i * 0.5, 0.0);
@@ -41,11 +57,7 @@ std::vector<double> PriorXAtScans(bool absorb) {
   Gyro(records, 4.0, 4.5, 0.0);
   records.push_back(sensors::StrideSample{4.5, 0.3});
   records.push_back(RingScan(4.5));
-  LaserOdometryOptions options;
-  options.match_scans = false;  // the prior alone, anchored at the first scan's keyframe
-  options.dead_reckoning.max_stride_period_s = 1.5;
-  options.keyframe_absorbs_stride_jumps = absorb;
-  LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
+  LaserOdometry odometry(PriorOnly(absorb), sensors::EntityKind::kHuman, {}, 0.0);
   std::vector<double> prior_x_m;
   for (const auto& record : records) {
     if (auto estimate = odometry.Add(record)) prior_x_m.push_back(estimate->world_from_prior.x_m);
@@ -54,16 +66,88 @@ std::vector<double> PriorXAtScans(bool absorb) {
 }
 
 TEST(StrideJump, AReportReplacingTheExtrapolationDoesNotMoveAPriorAnchoredBeforeIt) {
-  const std::vector<double> absorbed = PriorXAtScans(true);
+  const std::vector<double> absorbed = PriorXAtScans(Absorb::kWhole);
   ASSERT_EQ(absorbed.size(), 3u);
   EXPECT_NEAR(absorbed[1], absorbed[0], 1e-6);  // the turn on the spot: no motion
   // The report replaces the 0.6 m carried on by 0.3 m back: the jump (-0.9 m) is absorbed.
   EXPECT_NEAR(absorbed[2], absorbed[1], 1e-6);
   // Off (the default): the prior jumps back by the report and the invented stride together.
-  const std::vector<double> carried = PriorXAtScans(false);
+  const std::vector<double> carried = PriorXAtScans(Absorb::kNone);
   ASSERT_EQ(carried.size(), 3u);
   EXPECT_NEAR(carried[1], carried[0], 1e-6);
   EXPECT_NEAR(carried[2] - carried[1], -0.9, 1e-6);
+}
+
+// Steady 0.6 m strides at 2 Hz along +x (reports at 0.5 ... 2.0 s, at 2.4 m), the first scan (the
+// keyframe) at keyframe_s, then a shorter 0.4 m stride reported at 2.5 s (the walker slowed) and a
+// scan then. Returns how far the prior moved from the keyframe to that scan.
+double PriorMoveAfterASlowerStride(double keyframe_s, Absorb absorb) {
+  std::vector<sensors::SensorRecord> records;
+  for (int i = 1; i <= 5; ++i) {
+    const double stamp_s = i * 0.5;
+    if (keyframe_s > stamp_s - 0.5 && keyframe_s < stamp_s) {
+      Gyro(records, stamp_s - 0.5, keyframe_s, 0.0);
+      records.push_back(RingScan(keyframe_s));
+      Gyro(records, keyframe_s, stamp_s, 0.0);
+    } else {
+      Gyro(records, stamp_s - 0.5, stamp_s, 0.0);
+    }
+    records.push_back(sensors::StrideSample{stamp_s, i == 5 ? 0.4 : 0.6});
+  }
+  records.push_back(RingScan(2.5));
+  LaserOdometry odometry(PriorOnly(absorb), sensors::EntityKind::kHuman, {}, 0.0);
+  std::vector<double> prior_x_m;
+  for (const auto& record : records) {
+    if (auto estimate = odometry.Add(record)) prior_x_m.push_back(estimate->world_from_prior.x_m);
+  }
+  EXPECT_EQ(prior_x_m.size(), 2u);
+  return prior_x_m.size() == 2u ? prior_x_m[1] - prior_x_m[0] : 0.0;
+}
+
+// The keyframe at 2.05 s had extrapolated a tenth of the stride begun at 2.0 s (0.06 m); the report
+// at 2.5 s says it was 0.4 m, not 0.6 m (a -0.2 m jump). Walked evenly, the walker moved 0.36 m
+// from the keyframe: the keyframe's share of the jump is a tenth (-0.02 m). Absorbing the whole
+// jump reads 0.54 m, and a keyframe taken before the stride began (1.95 s) absorbs none of it.
+TEST(StrideJump, AKeyframeAbsorbsOnlyTheShareOfAJumpThatAccruedBeforeItsStamp) {
+  EXPECT_NEAR(PriorMoveAfterASlowerStride(2.05, Absorb::kShare), 0.36, 1e-6);
+  EXPECT_NEAR(PriorMoveAfterASlowerStride(2.05, Absorb::kWhole), 0.54, 1e-6);
+  EXPECT_NEAR(PriorMoveAfterASlowerStride(2.05, Absorb::kNone), 0.34, 1e-6);
+  EXPECT_NEAR(PriorMoveAfterASlowerStride(1.95, Absorb::kShare), 0.46, 1e-6);
+  EXPECT_NEAR(PriorMoveAfterASlowerStride(1.95, Absorb::kWhole), 0.66, 1e-6);
+}
+
+// The stop and turn back above: the keyframe at 3.0 s holds 0.4 of the 2.0-4.5 s stride's time,
+// so it takes 0.4 of the -0.9 m jump, and the prior moves by the remaining -0.54 m.
+TEST(StrideJump, TheShareOfAJumpGrowsWithTheTimeWithinTheCorrectedStride) {
+  dead_reckoning::HumanDeadReckoningOptions options;
+  options.max_stride_period_s = 1.5;
+  dead_reckoning::HumanDeadReckoning walker(options, {});
+  for (int i = 1; i <= 4; ++i) walker.Add(sensors::StrideSample{i * 0.5, 0.6});
+  EXPECT_TRUE(walker.TakeStrideJumps().size() == 3u);  // steady walking: three zero jumps
+  walker.Add(sensors::StrideSample{4.5, 0.3});
+  const std::vector<dead_reckoning::StrideJump> jumps = walker.TakeStrideJumps();
+  ASSERT_EQ(jumps.size(), 1u);
+  EXPECT_DOUBLE_EQ(jumps[0].stride_start_s, 2.0);
+  EXPECT_NEAR(jumps[0].jump_m.x(), 0.3 - 0.6, 1e-9);  // no turn here: the stride ran on along +x
+  EXPECT_NEAR(jumps[0].ShareAt(3.0).x(), 0.4 * -0.3, 1e-9);
+  EXPECT_NEAR(jumps[0].ShareAt(1.0).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(jumps[0].ShareAt(4.5).x(), -0.3, 1e-9);
+  EXPECT_TRUE(walker.TakeStrideJumps().empty());
+  const std::vector<double> shared = PriorXAtScans(Absorb::kShare);
+  ASSERT_EQ(shared.size(), 3u);
+  EXPECT_NEAR(shared[2] - shared[1], -0.54, 1e-6);
+}
+
+TEST(StrideJump, TheShareIsAModeOfTheAbsorbingFlag) {
+  LaserOdometryOptions options;
+  options.keyframe_stride_jump_share = true;
+  try {
+    LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("laser_odometry.keyframe_stride_jump_share"),
+              std::string::npos);
+  }
 }
 
 }  // namespace

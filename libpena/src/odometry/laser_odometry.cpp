@@ -138,7 +138,7 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
 
 geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
   const geometry::Pose2 increment = motion.TakeIncrement(scan);
-  if (options.keyframe_absorbs_stride_jumps) AbsorbStrideJump(motion.stride_jump_m());
+  if (options.keyframe_absorbs_stride_jumps) AbsorbStrideJumps();
   const auto& motion_pose = motion.last_pose();
   motion_since_keyframe.reset();
   // Intel's bursts repeat the pose of the scan delivered with them (its Y frame: 0.249 -> 0.392 m
@@ -162,17 +162,6 @@ geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
   // would add that catch-up on top of the motion the matcher already found.
   return geometry::Compose(local_map.latest().world_from_body,
                            geometry::Between(*keyframe_motion_pose, *motion_pose));
-}
-
-void LaserOdometry::Impl::AbsorbStrideJump(const Eigen::Vector2d& jump_m) {
-  // The poses paired with the keyframe (and with a held candidate that may become one) were
-  // taken before the jump: moved with it, the motion since them leaves the corrected guess out.
-  for (std::optional<geometry::Pose2>* pose :
-       {&keyframe_motion_pose, held ? &held->motion_pose : nullptr}) {
-    if (pose == nullptr || !pose->has_value()) continue;
-    (*pose)->x_m += jump_m.x();
-    (*pose)->y_m += jump_m.y();
-  }
 }
 
 scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Points2& points,

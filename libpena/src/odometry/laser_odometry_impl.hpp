@@ -72,6 +72,7 @@ struct LaserOdometry::Impl {
   geometry::Pose2 estimate;
   // The motion sensor's pose at the latest keyframe: priors are anchored there (see Predict).
   std::optional<geometry::Pose2> keyframe_motion_pose;
+  double keyframe_motion_stamp_s = 0.0;  // when keyframe_motion_pose was taken
   std::optional<double> keyframe_heading_sigma_rad;  // the heading filter's there (dead reckoning)
   geometry::Pose2 previous_estimate;  // at the previous scan
   geometry::Pose2 velocity;           // estimated motion over the previous scan interval
@@ -102,7 +103,9 @@ struct LaserOdometry::Impl {
   OdometryEstimate AddScan(const sensors::LaserScan& scan);
   geometry::Pose2 Predict(const sensors::LaserScan& scan);
   // keyframe_absorbs_stride_jumps: moves the keyframe's (and a held candidate's) motion pose.
-  void AbsorbStrideJump(const Eigen::Vector2d& jump_m);
+  void AbsorbStrideJumps();
+  // The part of the jumps since the previous scan that a motion pose taken at stamp_s absorbs.
+  Eigen::Vector2d StrideJumpAbsorbedM(double stamp_s) const;
   void Match(const scan_matching::Points2& points, OdometryEstimate& out);
   scan_matching::MatchResult Search(const scan_matching::Points2& points,
                                     const geometry::Pose2& prior, OdometryEstimate& out);

@@ -49,6 +49,30 @@ bool LaserOdometry::Impl::HeadingOffTheFilter() {
   return true;
 }
 
+void LaserOdometry::Impl::AbsorbStrideJumps() {
+  // The poses paired with the keyframe (and with a held candidate that may become one) were
+  // taken before the jump: moved with it, the motion since them leaves the corrected guess out.
+  auto absorb = [this](std::optional<geometry::Pose2>& pose, double stamp_s) {
+    if (!pose) return;
+    const Eigen::Vector2d jump_m = StrideJumpAbsorbedM(stamp_s);
+    pose->x_m += jump_m.x();
+    pose->y_m += jump_m.y();
+  };
+  absorb(keyframe_motion_pose, keyframe_motion_stamp_s);
+  if (held) absorb(held->motion_pose, held->stamp_s);
+}
+
+Eigen::Vector2d LaserOdometry::Impl::StrideJumpAbsorbedM(double stamp_s) const {
+  if (!options.keyframe_stride_jump_share) return motion.stride_jump_m();
+  // Only what the pose had accrued of the corrected stride by its stamp: a keyframe taken just
+  // after a report held almost none of the next stride's guess, and the rest was walked since.
+  Eigen::Vector2d share_m = Eigen::Vector2d::Zero();
+  for (const dead_reckoning::StrideJump& jump : motion.stride_jumps()) {
+    share_m += jump.ShareAt(stamp_s);
+  }
+  return share_m;
+}
+
 // The held candidate becomes the latest keyframe, and the scan being matched is predicted from
 // it (the prior anchored there, as in Predict).
 void LaserOdometry::Impl::CommitHeld(OdometryEstimate& out) {
@@ -57,6 +81,7 @@ void LaserOdometry::Impl::CommitHeld(OdometryEstimate& out) {
   AddKeyframe(candidate.points, candidate.world_from_body, candidate.poor_timing,
               candidate.stamp_s);
   keyframe_motion_pose = candidate.motion_pose;
+  keyframe_motion_stamp_s = candidate.stamp_s;
   keyframe_heading_sigma_rad = candidate.heading_sigma_rad;
   ++counts.keyframes;
   const auto& motion_pose = motion.last_pose();
@@ -119,6 +144,7 @@ void LaserOdometry::Impl::TakeKeyframe(const scan_matching::Points2& points, Odo
   held.reset();
   AddKeyframe(points, estimate, poor_timing, out.stamp_s);
   keyframe_motion_pose = frozen_odometry.PairedPose(motion.last_pose(), estimate);
+  keyframe_motion_stamp_s = out.stamp_s;
   keyframe_heading_sigma_rad = motion.heading_sigma_rad();
   out.reference_changed = true;
   ++counts.keyframes;

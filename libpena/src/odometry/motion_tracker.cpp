@@ -69,6 +69,7 @@ geometry::Pose2 MotionTracker::TakeIncrement(const sensors::LaserScan& scan) {
       heading_sigma_rad_ = std::sqrt(prior.covariance(2, 2));
       stride_jump_m_ = dead_reckoning_.extrapolation_jumps_m() - jumps_so_far_m_;
       jumps_so_far_m_ = dead_reckoning_.extrapolation_jumps_m();
+      stride_jumps_ = dead_reckoning_.TakeStrideJumps();
       break;
     }
     case MotionPrior::kOdometry:

@@ -2,6 +2,7 @@
 // The motion prior between scans, from whichever motion sensor the entity has.
 
 #include <optional>
+#include <vector>
 
 #include "pena/dead_reckoning/human_dead_reckoning.hpp"
 #include "pena/odometry/laser_odometry.hpp"
@@ -31,6 +32,8 @@ class MotionTracker {
   // Dead reckoning: the jumps it made between the previous scan and the last one given to
   // TakeIncrement by replacing or dropping its extrapolated stride (world frame; zero otherwise).
   const Eigen::Vector2d& stride_jump_m() const { return stride_jump_m_; }
+  // The same jumps one by one, with the stride each corrects (keyframe_stride_jump_share).
+  const std::vector<dead_reckoning::StrideJump>& stride_jumps() const { return stride_jumps_; }
 
   MotionPrior mode() const { return mode_; }
   // The heading filter's standard deviation at the last scan given to TakeIncrement (dead
@@ -50,6 +53,7 @@ class MotionTracker {
   std::optional<double> heading_sigma_rad_;               // at the previous scan
   Eigen::Vector2d stride_jump_m_ = Eigen::Vector2d::Zero();   // see stride_jump_m()
   Eigen::Vector2d jumps_so_far_m_ = Eigen::Vector2d::Zero();  // the dead reckoning's sum then
+  std::vector<dead_reckoning::StrideJump> stride_jumps_;       // see stride_jumps()
   std::optional<sensors::WheelOdometry> previous_wheel_, latest_wheel_;
   double stride_sum_m_ = 0.0;                             // since the previous scan
   std::optional<double> last_compass_rejected_s_;

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <optional>
+#include <vector>
 
 #include "pena/dead_reckoning/heading_filter.hpp"
 #include "pena/dead_reckoning/stride_calibration.hpp"
@@ -57,6 +58,18 @@ struct PosePrior {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
+// One jump of the estimate when a stride report replaced the extrapolated stride in progress, or
+// overdue_turn_rad dropped it: a corrected guess about the stride that began at stride_start_s.
+struct StrideJump {
+  double stride_start_s = 0.0;  // the report the extrapolation ran on from
+  double stamp_s = 0.0;         // when the jump was made
+  Eigen::Vector2d jump_m = Eigen::Vector2d::Zero();  // world frame
+  // The part of the jump that a pose taken at pose_stamp_s had accrued, the stride taken as
+  // walked evenly in time from stride_start_s to stamp_s: all of it for a pose at or after
+  // stamp_s, none for one before the stride began.
+  Eigen::Vector2d ShareAt(double pose_stamp_s) const;
+};
+
 // What happened to the last sample (kNone: used as is).
 enum class DeadReckoningEvent {
   kNone,
@@ -101,6 +114,10 @@ class HumanDeadReckoning {
   // (LaserOdometryOptions::keyframe_absorbs_stride_jumps). Reports without a known pace (nothing
   // extrapolated: new motion) add nothing.
   const Eigen::Vector2d& extrapolation_jumps_m() const { return extrapolation_jumps_m_; }
+  // The same jumps one by one, with the stride each corrects, since the last call (at most the
+  // latest kMaxPendingJumps; LaserOdometryOptions::keyframe_stride_jump_share).
+  std::vector<StrideJump> TakeStrideJumps();
+  static constexpr std::size_t kMaxPendingJumps = 64;
 
   // The scale applied to the stride sensor's lengths (1 until calibrated).
   double stride_scale() const { return calibration_.scale(); }
@@ -125,6 +142,9 @@ class HumanDeadReckoning {
   // stride's pace, at most one stride (raw: before the stride scale).
   Eigen::Vector2d AheadRawM(double stamp_s) const;
   DeadReckoningEvent Count(DeadReckoningEvent event);
+  // Adds a jump made at stamp_s (correcting the stride begun at stride_start_s) to
+  // extrapolation_jumps_m_ and to the pending jumps.
+  void NoteJump(double stride_start_s, double stamp_s, const Eigen::Vector2d& jump_m);
 
   HumanDeadReckoningOptions options_;
   HeadingFilter heading_;
@@ -142,6 +162,7 @@ class HumanDeadReckoning {
   StrideCalibration calibration_;
   Eigen::Vector2d raw_walk_m_ = Eigen::Vector2d::Zero();  // unscaled strides along the heading
   Eigen::Vector2d extrapolation_jumps_m_ = Eigen::Vector2d::Zero();  // see extrapolation_jumps_m()
+  std::vector<StrideJump> pending_jumps_;  // see TakeStrideJumps()
 };
 
 }  // namespace pena::dead_reckoning
