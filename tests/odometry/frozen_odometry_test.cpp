@@ -107,6 +107,40 @@ TEST(FrozenOdometry, TheRobotDefaultsHandleAFreeze) {
   EXPECT_LT(WorstPriorHeadingErrorRad(estimates, first), 3.0 * kDeg);
 }
 
+// local_map_place_fill_frozen_scans: while frozen and a few scans after, the place choice's
+// free slots go to the latest keyframes (session 12). The runs agree up to the freeze, differ
+// in it (the rule acted), and the priors and the end stay as good as with the defaults.
+TEST(FrozenOdometry, TheReferenceIsFilledWhileFrozen) {
+  const std::size_t first = FastestTurnStart();
+  const std::vector<sensors::SensorRecord> records = WithFrozenOdometry(first);
+  LaserOdometryOptions place_only;
+  place_only.local_map_place_fill_frozen_scans = 0;
+  LaserOdometryOptions filled;
+  filled.local_map_place_fill_frozen_scans = 5;
+  const std::vector<OdometryEstimate> plain = Replay(records, place_only);
+  const std::vector<OdometryEstimate> estimates = Replay(records, filled);
+  ASSERT_EQ(estimates.size(), plain.size());
+  const auto same = [&](std::size_t i) {
+    return plain[i].score == estimates[i].score &&
+           plain[i].world_from_body.theta_rad == estimates[i].world_from_body.theta_rad;
+  };
+  for (std::size_t i = 0; i < first; ++i) ASSERT_TRUE(same(i)) << "scan " << i;
+  bool acted = false;
+  for (std::size_t i = first; i < first + kFrozenScans + 5; ++i) acted = acted || !same(i);
+  EXPECT_TRUE(acted);
+  // A robot's default since session 12 (five Freiburg start frames, docs/odometry.md).
+  const std::vector<OdometryEstimate> defaults = Replay(records, {});
+  ASSERT_EQ(defaults.size(), estimates.size());
+  for (std::size_t i = 0; i < defaults.size(); ++i) {
+    ASSERT_EQ(defaults[i].world_from_body.theta_rad, estimates[i].world_from_body.theta_rad) << i;
+  }
+  EXPECT_LT(WorstPriorHeadingErrorRad(estimates, first), 3.0 * kDeg);
+  const double end_error_rad =
+      geometry::NormalizeAngle(estimates.back().world_from_body.theta_rad -
+                               Robot().truth.back().world_from_body.theta_rad);
+  EXPECT_LT(std::abs(end_error_rad), 2.0 * kDeg);
+}
+
 TEST(FrozenOdometry, OptionsAreChecked) {
   LaserOdometryOptions options;
   options.frozen_odometry_min_turn_rad = -0.1;

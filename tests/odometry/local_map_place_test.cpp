@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -137,6 +138,33 @@ TEST(PlaceChoice, TheFillLeavesThePlaceChoiceAloneWhereItIsFull) {
   for (double marker : {0.0, 1.0, 9.0, 10.0}) EXPECT_TRUE(HasMarker(reference, marker)) << marker;
 }
 
+// The fill on demand (local_map_place_fill_below_score, local_map_place_fill_frozen_scans):
+// FilledReference offers the filled reference without changing the choice, FillFreeSlots takes
+// it until the next keyframe chooses again.
+TEST(PlaceChoice, TheFillOnDemandLastsUntilTheNextChoice) {
+  LocalMap map(4, 0.12, false, 0.0, Place());
+  for (int k = 0; k <= 10; ++k) map.Add(Marked(1.5 * k, 0.0, k, static_cast<double>(k)));
+  const std::optional<scan_matching::Points2> filled = map.FilledReference();
+  ASSERT_TRUE(filled.has_value());
+  EXPECT_EQ(filled->size(), 4u);
+  for (double marker : {7.0, 8.0, 9.0, 10.0}) EXPECT_TRUE(HasMarker(*filled, marker)) << marker;
+  EXPECT_EQ(map.Reference().size(), 2u);  // offered, not taken
+  EXPECT_TRUE(map.FillFreeSlots());
+  EXPECT_EQ(map.Reference().size(), 4u);
+  EXPECT_FALSE(map.FillFreeSlots());  // already full
+  EXPECT_FALSE(map.FilledReference().has_value());
+  map.Add(Marked(16.5, 0.0, 11.0, 11.0));  // the next keyframe chooses by place again
+  EXPECT_EQ(map.Reference().size(), 2u);
+}
+
+// Without the place choice there is nothing to fill.
+TEST(PlaceChoice, RecencyHasNoFillOnDemand) {
+  LocalMap map(4, 0.12, false, 0.0);
+  for (int k = 0; k <= 10; ++k) map.Add(Marked(1.5 * k, 0.0, k, static_cast<double>(k)));
+  EXPECT_FALSE(map.FilledReference().has_value());
+  EXPECT_FALSE(map.FillFreeSlots());
+}
+
 struct RobotRun {
   geometry::Pose2 end;
   long keyframes = 0;
@@ -204,6 +232,34 @@ TEST(PlaceChoice, RobotsChooseByPlaceAndPeopleByRecencyByDefault) {
   EXPECT_FALSE(Same(person, Poses("ff1", place)));
 }
 
+// local_map_place_fill_below_score on the whole chain (the team robot, a bar it does not always
+// reach): the runs agree up to the first match below the bar whose reference has free slots;
+// there the match against the filled reference scored higher and was kept.
+TEST(PlaceChoice, APoorMatchIsSearchedAgainAgainstTheFilledReference) {
+  const sim::EntityRecording& robot = testing::TeamEntity("robot1");
+  LaserOdometryOptions refill;
+  refill.local_map_place_fill_below_score = 0.95;
+  LaserOdometryOptions place_only;
+  place_only.local_map_place_fill_below_score = 0.0;
+  const std::vector<OdometryEstimate> plain =
+      testing::ReplayRecords(robot, robot.records, place_only);
+  const std::vector<OdometryEstimate> again =
+      testing::ReplayRecords(robot, robot.records, refill);
+  ASSERT_EQ(plain.size(), again.size());
+  std::size_t first = 0;
+  while (first < plain.size() && plain[first].score == again[first].score) ++first;
+  ASSERT_LT(first, plain.size()) << "the rule never acted";
+  EXPECT_LT(plain[first].score, refill.local_map_place_fill_below_score);
+  EXPECT_GT(again[first].score, plain[first].score);
+  const geometry::Pose2& truth = robot.truth.back().world_from_body;
+  const geometry::Pose2& end = again.back().world_from_body;
+  EXPECT_LT(std::hypot(truth.x_m - end.x_m, truth.y_m - end.y_m), 0.5);
+  EXPECT_LT(std::abs(geometry::NormalizeAngle(truth.theta_rad - end.theta_rad)), 2.0 * kDeg);
+  // On by default since session 12, at keyframe_min_score (the Freiburg five-start means).
+  EXPECT_EQ(LaserOdometryOptions{}.local_map_place_fill_below_score,
+            LaserOdometryOptions{}.keyframe_min_score);
+}
+
 TEST(PlaceChoice, OptionsAreChecked) {
   const auto throws = [](const LaserOdometryOptions& options) {
     EXPECT_THROW(LaserOdometry(options, sensors::EntityKind::kRobot, {}, 0.0),
@@ -220,6 +276,15 @@ TEST(PlaceChoice, OptionsAreChecked) {
   throws(options);
   options = {};
   options.local_map_pool_age_s = 0.0;
+  throws(options);
+  options = {};
+  options.local_map_place_fill_below_score = 1.5;
+  throws(options);
+  options = {};
+  options.local_map_place_fill_below_score = -0.1;
+  throws(options);
+  options = {};
+  options.local_map_place_fill_frozen_scans = -1;
   throws(options);
 }
 

@@ -19,14 +19,17 @@ std::optional<geometry::Pose2> FrozenOdometry::Predict(
   last_sensor_pose_ = sensor_pose;
   if (!enabled || !repeated) {
     frozen_ = false;
-    return std::nullopt;
-  }
-  if (!frozen_) {
+  } else if (!frozen_) {
     // A robot that stops reports zero motion too: only a repeat while the scans moved counts.
     const double moved_m = std::hypot(velocity.x_m, velocity.y_m);
     const bool moving = (min_turn_rad_ > 0.0 && std::abs(velocity.theta_rad) >= min_turn_rad_) ||
                         (min_move_m_ > 0.0 && moved_m >= min_move_m_);
     frozen_ = moving && fresh_estimate_.has_value();
+  }
+  if (frozen_) {
+    scans_since_frozen_ = 0;
+  } else if (scans_since_frozen_) {
+    ++*scans_since_frozen_;
   }
   if (!frozen_) return std::nullopt;
   return geometry::Compose(previous_estimate, velocity);

@@ -38,6 +38,8 @@ class FrozenOdometry {
   void Estimated(const geometry::Pose2& world_from_body);
 
   bool frozen() const { return frozen_; }
+  // Scans since the last frozen one (0 while frozen); nullopt before the first freeze.
+  std::optional<int> scans_since_frozen() const { return scans_since_frozen_; }
 
  private:
   double min_turn_rad_;
@@ -45,6 +47,7 @@ class FrozenOdometry {
   std::optional<geometry::Pose2> last_sensor_pose_;  // at the previous scan
   std::optional<geometry::Pose2> fresh_estimate_;    // the estimate at the last unfrozen scan
   bool frozen_ = false;
+  std::optional<int> scans_since_frozen_;
 };
 
 }  // namespace pena::odometry::internal

@@ -184,9 +184,12 @@ scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Poin
 void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEstimate& out) {
   geometry::Pose2 prior = out.world_from_prior;
   // The place choice: back where an earlier keyframe was taken, match against that one again.
-  if (local_map.ChooseAgain(prior, out.stamp_s)) {
+  bool rebuild = local_map.ChooseAgain(prior, out.stamp_s);
+  if (FillWhileFrozen()) rebuild = local_map.FillFreeSlots() || rebuild;
+  if (rebuild) {
     matcher.emplace(options.matcher, local_map.Reference());
   }
+  const internal::WindowScale window_before = window;
   scan_matching::MatchResult result = Search(points, prior, out);
   if (held && result.score < options.keyframe_turn_min_score) {
     CommitHeld(out);
@@ -196,6 +199,9 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
     // seed 3 at 144.25 s: that one carried a poor turn keyframe's +6 deg into the new map).
     estimate = prior;
     result = Search(points, prior, out);
+  }
+  if (result.score < options.local_map_place_fill_below_score) {
+    result = SearchFilled(points, prior, window_before, result, out);
   }
   if (result.score < options.min_score) {
     // The motion sensor itself may be wrong (logged odometry that froze, then jumped): try

@@ -109,6 +109,13 @@ struct LaserOdometry::Impl {
   void Match(const scan_matching::Points2& points, OdometryEstimate& out);
   scan_matching::MatchResult Search(const scan_matching::Points2& points,
                                     const geometry::Pose2& prior, OdometryEstimate& out);
+  // local_map_place_fill_below_score: `first` (searched from `window_before`) against the
+  // reference with the free slots filled; the better of the two.
+  scan_matching::MatchResult SearchFilled(const scan_matching::Points2& points,
+                                          const geometry::Pose2& prior,
+                                          const internal::WindowScale& window_before,
+                                          scan_matching::MatchResult first, OdometryEstimate& out);
+  bool FillWhileFrozen() const;
   void TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out);
   void AddKeyframe(const scan_matching::Points2& points, const geometry::Pose2& world_from_body,
                    bool bursty, double stamp_s);

@@ -140,6 +140,37 @@ LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const Odom
                                                               : GateDecision::kGated;
 }
 
+// The place choice's reference is small when the entity drives on (3-4 keyframes where
+// recency keeps 8); at mit-csail's turn ends and odometry freezes it matched at 0.40-0.44 where
+// the recency reference matched at 0.76-0.83, and the poor match became a keyframe. Filling it
+// everywhere loses the place choice's gain on intel and aces (session 11), so only here.
+scan_matching::MatchResult LaserOdometry::Impl::SearchFilled(
+    const scan_matching::Points2& points, const geometry::Pose2& prior,
+    const internal::WindowScale& window_before, scan_matching::MatchResult first,
+    OdometryEstimate& out) {
+  std::optional<scan_matching::Points2> filled = local_map.FilledReference();
+  if (!filled) return first;
+  const internal::WindowScale window_after = window;
+  std::optional<scan_matching::CorrelationScanMatcher> chosen = std::move(matcher);
+  matcher.emplace(options.matcher, *filled);
+  window = window_before;
+  scan_matching::MatchResult other = Search(points, prior, out);
+  if (other.score > first.score) {
+    local_map.FillFreeSlots();  // the reference the kept match used
+    return other;
+  }
+  matcher = std::move(chosen);
+  window = window_after;
+  return first;
+}
+
+// While the wheel odometry is frozen and local_map_place_fill_frozen_scans scans after.
+bool LaserOdometry::Impl::FillWhileFrozen() const {
+  const std::optional<int> scans = frozen_odometry.scans_since_frozen();
+  return options.local_map_place_fill_frozen_scans > 0 && scans &&
+         *scans <= options.local_map_place_fill_frozen_scans;
+}
+
 void LaserOdometry::Impl::TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out) {
   held.reset();
   AddKeyframe(points, estimate, poor_timing, out.stamp_s);

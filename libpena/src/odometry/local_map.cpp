@@ -101,6 +101,21 @@ bool LocalMap::IsChosen(std::size_t index) const {
   return std::binary_search(chosen_.begin(), chosen_.end(), ids_[index]);
 }
 
+std::optional<scan_matching::Points2> LocalMap::FilledReference() const {
+  if (!place_choice()) return std::nullopt;
+  std::vector<std::int64_t> filled = chosen_;
+  FillWithRecent(filled);
+  if (filled == chosen_) return std::nullopt;
+  return ReferenceOf(filled);
+}
+
+bool LocalMap::FillFreeSlots() {
+  if (!place_choice()) return false;
+  const std::size_t before = chosen_.size();
+  FillWithRecent(chosen_);
+  return chosen_.size() != before;
+}
+
 bool LocalMap::ChooseAgain(const geometry::Pose2& world_from_body, double stamp_s) {
   if (!place_choice() || keyframes_.empty()) return false;
   // Only when the best place is missing: re-ranking at every scan would rebuild the matcher for
@@ -134,10 +149,12 @@ bool LocalMap::Covers(const geometry::Pose2& world_from_body, double distance_m,
   return false;
 }
 
-scan_matching::Points2 LocalMap::Reference() const {
+scan_matching::Points2 LocalMap::Reference() const { return ReferenceOf(chosen_); }
+
+scan_matching::Points2 LocalMap::ReferenceOf(const std::vector<std::int64_t>& chosen) const {
   std::vector<const Keyframe*> used;
   for (std::size_t i = 0; i < keyframes_.size(); ++i) {
-    if (IsChosen(i)) used.push_back(&keyframes_[i]);
+    if (std::binary_search(chosen.begin(), chosen.end(), ids_[i])) used.push_back(&keyframes_[i]);
   }
   scan_matching::Points2 reference;
   if (!require_confirmed_ || used.size() < 2) {

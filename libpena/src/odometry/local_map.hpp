@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <vector>
 
 #include "pena/geometry/pose2.hpp"
@@ -61,6 +62,13 @@ class LocalMap {
   // in the reference, chooses the reference around that pose. True when the reference changed.
   bool ChooseAgain(const geometry::Pose2& world_from_body, double stamp_s);
 
+  // Place choice only: the reference points with the slots the choice left free given to the
+  // next latest keyframes (as PlaceChoice::fill_recent would); nullopt when no slot is free.
+  std::optional<scan_matching::Points2> FilledReference() const;
+  // Gives the free slots to the latest keyframes until the reference is next chosen (the next
+  // keyframe or ChooseAgain). True when the reference changed.
+  bool FillFreeSlots();
+
   // True when a keyframe of the reference lies within distance_m and angle_rad of the pose.
   bool Covers(const geometry::Pose2& world_from_body, double distance_m, double angle_rad) const;
 
@@ -75,6 +83,7 @@ class LocalMap {
   std::vector<std::int64_t> ChosenFor(const geometry::Pose2& world_from_body, double stamp_s) const;
   void FillWithRecent(std::vector<std::int64_t>& chosen) const;
   bool IsChosen(std::size_t index) const;
+  scan_matching::Points2 ReferenceOf(const std::vector<std::int64_t>& chosen) const;
 
   int max_keyframes_;
   double confirm_distance_m_;

@@ -31,6 +31,11 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           o.local_map_recent_keyframes);
   Require(o.local_map_place_radius_m > 0.0, "local_map_place_radius_m", "> 0 m",
           o.local_map_place_radius_m);
+  Require(o.local_map_place_fill_below_score >= 0.0 && o.local_map_place_fill_below_score <= 1.0,
+          "local_map_place_fill_below_score", "in [0, 1] (0: off)",
+          o.local_map_place_fill_below_score);
+  Require(o.local_map_place_fill_frozen_scans >= 0, "local_map_place_fill_frozen_scans",
+          ">= 0 scans (0: off)", o.local_map_place_fill_frozen_scans);
   Require(o.keyframe_distance_m > 0.0, "keyframe_distance_m", "> 0 m", o.keyframe_distance_m);
   Require(o.keyframe_angle_rad > 0.0, "keyframe_angle_rad", "> 0 rad", o.keyframe_angle_rad);
   Require(o.keyframe_min_score >= 0.0 && o.keyframe_min_score <= 1.0, "keyframe_min_score",
