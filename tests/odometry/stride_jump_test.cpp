@@ -1,9 +1,11 @@
 // keyframe_absorbs_stride_jumps: a stride report that replaces the extrapolated stride in progress
 // corrects a guess about the past; with the option it does not move a prior anchored before it.
 // keyframe_stride_jump_share: only the part of that guess made before the keyframe's stamp.
+// keyframe_stride_jump_across_weak: at a degenerate keyframe, only that part across the corridor.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -136,6 +138,74 @@ TEST(StrideJump, TheShareOfAJumpGrowsWithTheTimeWithinTheCorrectedStride) {
   const std::vector<double> shared = PriorXAtScans(Absorb::kShare);
   ASSERT_EQ(shared.size(), 3u);
   EXPECT_NEAR(shared[2] - shared[1], -0.54, 1e-6);
+}
+
+// A featureless corridor along +x, 3 m wide, seen from its centre line looking along it.
+sensors::LaserScan CorridorScan(double stamp_s) {
+  sensors::LaserScan scan = RingScan(stamp_s);
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    const double across_m = std::abs(std::sin(scan.BeamAngle(i)));
+    const double range_m = across_m > 0.0 ? 1.5 / across_m : 100.0;
+    scan.ranges_m[i] = range_m < 25.0 ? static_cast<float>(range_m) : 0.0f;  // 0: no return
+  }
+  return scan;
+}
+
+// PriorMoveAfterASlowerStride walked in the corridor with the scans matched: the first scan at
+// 0.25 s, a keyframe at 2.05 s (2.46 m on: its match is degenerate along the corridor), then the
+// 0.4 m report at 2.5 s. Returns how far the prior moved from that keyframe to the last scan.
+double CorridorPriorMoveAfterASlowerStride(bool across_weak) {
+  std::vector<sensors::SensorRecord> records;
+  Gyro(records, 0.0, 0.25, 0.0);
+  records.push_back(CorridorScan(0.25));
+  Gyro(records, 0.25, 0.5, 0.0);
+  for (int i = 1; i <= 5; ++i) {
+    const double stamp_s = i * 0.5;
+    records.push_back(sensors::StrideSample{stamp_s, i == 5 ? 0.4 : 0.6});
+    if (i == 4) {
+      Gyro(records, stamp_s, 2.05, 0.0);
+      records.push_back(CorridorScan(2.05));
+      Gyro(records, 2.05, 2.5, 0.0);
+    } else if (i < 4) {
+      Gyro(records, stamp_s, stamp_s + 0.5, 0.0);
+    }
+  }
+  records.push_back(CorridorScan(2.5));
+  LaserOdometryOptions options = PriorOnly(Absorb::kShare);
+  options.match_scans = true;
+  options.keyframe_stride_jump_across_weak = across_weak;
+  LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
+  std::vector<OdometryEstimate> estimates;
+  for (const auto& record : records) {
+    if (auto estimate = odometry.Add(record)) estimates.push_back(*estimate);
+  }
+  EXPECT_EQ(estimates.size(), 3u);
+  if (estimates.size() != 3u) return 0.0;
+  EXPECT_EQ(estimates[1].status, MatchStatus::kDegenerate);
+  EXPECT_TRUE(estimates[1].reference_changed);  // the keyframe
+  return estimates[2].world_from_prior.x_m - estimates[1].world_from_body.x_m;
+}
+
+// The keyframe's position along the corridor is the prior's, the 0.06 m extrapolated at 2.05 s
+// included, and the report says the stride was 0.4 m: the prior must go on by the 0.34 m the
+// dead reckoning itself moved, or the chain of priors along the corridor loses the share
+// (0.02 m here, 0.4 m over loop170 seed 3's corridor at 28.5 s). The share alone reads 0.36 m.
+TEST(StrideJump, ADegenerateKeyframeKeepsTheJumpAlongItsWeakDirection) {
+  EXPECT_NEAR(CorridorPriorMoveAfterASlowerStride(true), 0.34, 1e-3);
+  EXPECT_NEAR(CorridorPriorMoveAfterASlowerStride(false), 0.36, 1e-3);
+}
+
+TEST(StrideJump, AcrossTheWeakDirectionIsAModeOfTheShare) {
+  LaserOdometryOptions options;
+  options.keyframe_absorbs_stride_jumps = true;
+  options.keyframe_stride_jump_across_weak = true;
+  try {
+    LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("laser_odometry.keyframe_stride_jump_across_weak"),
+              std::string::npos);
+  }
 }
 
 TEST(StrideJump, TheShareIsAModeOfTheAbsorbingFlag) {

@@ -91,6 +91,7 @@ void ApplyOdometrySettings(const std::vector<std::string>& settings,
       {"keyframe_by_place", &o.keyframe_by_place},
       {"keyframe_absorbs_stride_jumps", &o.keyframe_absorbs_stride_jumps},
       {"keyframe_stride_jump_share", &o.keyframe_stride_jump_share},
+      {"keyframe_stride_jump_across_weak", &o.keyframe_stride_jump_across_weak},
       {"local_map_place_fill_recent", &o.local_map_place_fill_recent}};
   for (const std::string& setting : settings) {
     const auto [name, value] = ParseSetting(setting);

@@ -40,24 +40,26 @@ scan_matching::Points2 UsablePoints(const sensors::LaserScan& scan, const LaserO
 // the weak direction of J^T J; along it the prior's component is kept instead of sliding. Weakly
 // constrained ones (below slide_ratio) too when the match slid farther than max_slide_m along it:
 // their few along-track points (floor hits moving with the person, one door frame) pulled it.
-bool KeepPriorAlongWeakDirection(const Eigen::Matrix3d& information,
-                                 const LaserOdometryOptions& options,
-                                 const geometry::Pose2& prior, geometry::Pose2& pose) {
+// Returns the weak direction (world frame, unit) when the prior's component was kept.
+std::optional<Eigen::Vector2d> KeepPriorAlongWeakDirection(const Eigen::Matrix3d& information,
+                                                           const LaserOdometryOptions& options,
+                                                           const geometry::Pose2& prior,
+                                                           geometry::Pose2& pose) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(information.topLeftCorner<2, 2>());
   const double weak = solver.eigenvalues()(0);
   const double strong = solver.eigenvalues()(1);
-  if (!(strong > 0.0)) return false;
+  if (!(strong > 0.0)) return std::nullopt;
   const Eigen::Vector2d direction = solver.eigenvectors().col(0);
   const Eigen::Vector2d offset(prior.x_m - pose.x_m, prior.y_m - pose.y_m);
   const double slide_m = std::abs(direction.dot(offset));
   const bool degenerate = weak < options.degenerate_eigen_ratio * strong;
   const bool slid = weak < options.degenerate_slide_ratio * strong &&
                     slide_m > options.degenerate_max_slide_m;
-  if (!degenerate && !slid) return false;
+  if (!degenerate && !slid) return std::nullopt;
   const Eigen::Vector2d shift = direction * direction.dot(offset);
   pose.x_m += shift.x();
   pose.y_m += shift.y();
-  return true;
+  return direction;
 }
 
 }  // namespace
@@ -100,6 +102,7 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   OdometryEstimate out;
   out.stamp_s = scan.stamp_s;
   out.world_from_prior = Predict(scan);
+  match_weak_direction.reset();
   poor_timing = timing.Add(scan.stamp_s);
   const scan_matching::Points2 points = UsablePoints(scan, options);
   out.points = static_cast<int>(points.size());
@@ -227,8 +230,8 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
     return;
   }
   estimate = result.reference_from_scan;
-  const bool degenerate =
-      KeepPriorAlongWeakDirection(result.information, options, prior, estimate);
+  match_weak_direction = KeepPriorAlongWeakDirection(result.information, options, prior, estimate);
+  const bool degenerate = match_weak_direction.has_value();
   out.status = degenerate ? MatchStatus::kDegenerate : MatchStatus::kMatched;
   ++(degenerate ? counts.degenerate : counts.matched);
   if (out.stale) return;  // where the earlier scan was taken: output, but it anchors nothing
@@ -258,8 +261,10 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
   if (NearAKeyframe(moved) && result.score >= options.keyframe_min_score) return;
   if (HoldDuringFastTurn(result.score, out)) {
     ++counts.turn_held;  // the pose is output; the reference waits for a better match
-    held = HeldCandidate{points, estimate, frozen_odometry.PairedPose(motion.last_pose(), estimate),
-                         motion.heading_sigma_rad(), poor_timing, out.stamp_s};
+    const std::optional<geometry::Pose2> motion_pose =
+        frozen_odometry.PairedPose(motion.last_pose(), estimate);
+    held = HeldCandidate{points,      estimate,    motion_pose, motion.heading_sigma_rad(),
+                         poor_timing, out.stamp_s, WeakDirectionInMotionFrame(motion_pose)};
     return;
   }
   TakeKeyframe(points, out);

@@ -74,6 +74,10 @@ struct LaserOdometry::Impl {
   std::optional<geometry::Pose2> keyframe_motion_pose;
   double keyframe_motion_stamp_s = 0.0;  // when keyframe_motion_pose was taken
   std::optional<double> keyframe_heading_sigma_rad;  // the heading filter's there (dead reckoning)
+  // keyframe_stride_jump_across_weak: the weak direction of the scan being added when its match
+  // was degenerate (world frame), and of the latest keyframe's match (motion sensor's frame).
+  std::optional<Eigen::Vector2d> match_weak_direction;
+  std::optional<Eigen::Vector2d> keyframe_weak_direction;
   geometry::Pose2 previous_estimate;  // at the previous scan
   geometry::Pose2 velocity;           // estimated motion over the previous scan interval
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
@@ -96,6 +100,7 @@ struct LaserOdometry::Impl {
     std::optional<double> heading_sigma_rad;
     bool poor_timing = false;
     double stamp_s = 0.0;
+    std::optional<Eigen::Vector2d> weak_direction;  // as keyframe_weak_direction
   };
   std::optional<HeldCandidate> held;
   OdometryCounts counts;
@@ -106,6 +111,10 @@ struct LaserOdometry::Impl {
   void AbsorbStrideJumps();
   // The part of the jumps since the previous scan that a motion pose taken at stamp_s absorbs.
   Eigen::Vector2d StrideJumpAbsorbedM(double stamp_s) const;
+  // match_weak_direction turned into the frame of motion_pose (paired with `estimate`); nullopt
+  // unless keyframe_stride_jump_across_weak is on and the match was degenerate.
+  std::optional<Eigen::Vector2d> WeakDirectionInMotionFrame(
+      const std::optional<geometry::Pose2>& motion_pose) const;
   void Match(const scan_matching::Points2& points, OdometryEstimate& out);
   scan_matching::MatchResult Search(const scan_matching::Points2& points,
                                     const geometry::Pose2& prior, OdometryEstimate& out);

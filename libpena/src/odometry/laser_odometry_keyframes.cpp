@@ -1,6 +1,7 @@
 // The keyframe and prior-gate decisions of LaserOdometry (see laser_odometry_impl.hpp): when a
 // match may anchor later priors, when it is held or gated, and how a keyframe enters the
 // reference.
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "laser_odometry_impl.hpp"
@@ -26,6 +27,7 @@ double LaserOdometry::Impl::GateBaseRad() const {
 void LaserOdometry::Impl::FallBackToPrior(const scan_matching::Points2& points,
                                           OdometryEstimate& out) {
   estimate = out.world_from_prior;
+  match_weak_direction.reset();  // the keyframe is the prior's in every direction
   // The keyframe-anchored prior carries every keyframe's heading error along; the gyro + compass
   // heading is bounded by the compass (ff1 of team seed 1 alone: 0.5 deg RMS). Take that one.
   if (motion.mode() == MotionPrior::kDeadReckoning && motion.last_pose()) {
@@ -52,14 +54,26 @@ bool LaserOdometry::Impl::HeadingOffTheFilter() {
 void LaserOdometry::Impl::AbsorbStrideJumps() {
   // The poses paired with the keyframe (and with a held candidate that may become one) were
   // taken before the jump: moved with it, the motion since them leaves the corrected guess out.
-  auto absorb = [this](std::optional<geometry::Pose2>& pose, double stamp_s) {
+  // Along a degenerate match's weak direction the pose is the prior's, extrapolation included:
+  // there the jump is motion since it (keyframe_stride_jump_across_weak).
+  auto absorb = [this](std::optional<geometry::Pose2>& pose, double stamp_s,
+                       const std::optional<Eigen::Vector2d>& weak_direction) {
     if (!pose) return;
-    const Eigen::Vector2d jump_m = StrideJumpAbsorbedM(stamp_s);
+    Eigen::Vector2d jump_m = StrideJumpAbsorbedM(stamp_s);
+    if (weak_direction) jump_m -= *weak_direction * weak_direction->dot(jump_m);
     pose->x_m += jump_m.x();
     pose->y_m += jump_m.y();
   };
-  absorb(keyframe_motion_pose, keyframe_motion_stamp_s);
-  if (held) absorb(held->motion_pose, held->stamp_s);
+  absorb(keyframe_motion_pose, keyframe_motion_stamp_s, keyframe_weak_direction);
+  if (held) absorb(held->motion_pose, held->stamp_s, held->weak_direction);
+}
+
+std::optional<Eigen::Vector2d> LaserOdometry::Impl::WeakDirectionInMotionFrame(
+    const std::optional<geometry::Pose2>& motion_pose) const {
+  if (!options.keyframe_stride_jump_across_weak || !match_weak_direction || !motion_pose) {
+    return std::nullopt;
+  }
+  return Eigen::Rotation2Dd(motion_pose->theta_rad - estimate.theta_rad) * *match_weak_direction;
 }
 
 Eigen::Vector2d LaserOdometry::Impl::StrideJumpAbsorbedM(double stamp_s) const {
@@ -83,6 +97,7 @@ void LaserOdometry::Impl::CommitHeld(OdometryEstimate& out) {
   keyframe_motion_pose = candidate.motion_pose;
   keyframe_motion_stamp_s = candidate.stamp_s;
   keyframe_heading_sigma_rad = candidate.heading_sigma_rad;
+  keyframe_weak_direction = candidate.weak_direction;
   ++counts.keyframes;
   const auto& motion_pose = motion.last_pose();
   if (!motion_pose || !keyframe_motion_pose) return;
@@ -177,6 +192,7 @@ void LaserOdometry::Impl::TakeKeyframe(const scan_matching::Points2& points, Odo
   keyframe_motion_pose = frozen_odometry.PairedPose(motion.last_pose(), estimate);
   keyframe_motion_stamp_s = out.stamp_s;
   keyframe_heading_sigma_rad = motion.heading_sigma_rad();
+  keyframe_weak_direction = WeakDirectionInMotionFrame(keyframe_motion_pose);
   out.reference_changed = true;
   ++counts.keyframes;
 }

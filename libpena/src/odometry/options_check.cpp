@@ -99,6 +99,9 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
   Require(!o.keyframe_stride_jump_share || o.keyframe_absorbs_stride_jumps,
           "keyframe_stride_jump_share", "off unless keyframe_absorbs_stride_jumps is on (flag)",
           o.keyframe_stride_jump_share ? 1.0 : 0.0);
+  Require(!o.keyframe_stride_jump_across_weak || o.keyframe_stride_jump_share,
+          "keyframe_stride_jump_across_weak", "off unless keyframe_stride_jump_share is on (flag)",
+          o.keyframe_stride_jump_across_weak ? 1.0 : 0.0);
   Require(o.prior_gate_compass_window_s >= 0.0, "prior_gate_compass_window_s", ">= 0 s",
           o.prior_gate_compass_window_s);
   Require(o.stale_history_scans >= 0, "stale_history_scans", ">= 0 scans (0: no check)",

@@ -200,6 +200,14 @@ struct LaserOdometryOptions {
   // mean RMSE is the lowest measured, but loop170 seed 3 ends over 1 % in two perturbed draws
   // (docs/odometry.md, twelfth round d3).
   bool keyframe_stride_jump_share = false;
+  // With keyframe_stride_jump_share: a keyframe whose match was degenerate (its position along the
+  // weak direction is the prior's, extrapolation error included) absorbs only the part of its
+  // share across that direction; along it the jump stays motion since the keyframe, so along a
+  // corridor the chain of priors still sums to the dead reckoning's own distance (loop170 seed 3
+  // at 28.5 s: 0.4 m along the corridor kept for good with the share alone). Off by default:
+  // loop170 seeds 1-5 under 1 % in both start draws, but seeds 6 and 8 more than 0.2 m worse
+  // than the defaults in both (docs/odometry.md, twelfth round d4).
+  bool keyframe_stride_jump_across_weak = false;
   // ... except within this long after the heading filter rejected a compass reading (a
   // magnetic disturbance: the prior's heading is bent, the scans win on the count alone).
   double prior_gate_compass_window_s = 1.0;
