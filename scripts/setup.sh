@@ -34,7 +34,10 @@ fi
 build_dir=${PENA_BUILD_DIR:-build}
 jobs=${PENA_JOBS:-$(nproc)}
 # Pass -DPENA_WERROR only when asked: flipping a cached option would rebuild everything.
-config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
+# Line tables only (-g1): backtraces keep their functions and lines, and the build takes about a
+# fifth less time than with full debug info (CI's budget is 30 minutes on 2 cores). Debug builds
+# (cmake -DCMAKE_BUILD_TYPE=Debug) keep full debug info.
+config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG")
 if [[ "${CI:-}" == "true" ]]; then config+=(-DPENA_WERROR=ON); fi
 if [[ -n "${PENA_WERROR:-}" ]]; then config+=(-DPENA_WERROR="$PENA_WERROR"); fi
 # ccache, when the machine has it, makes a rebuild after a branch switch or a clean checkout cheap;
