@@ -204,7 +204,7 @@ void WriteSummaryJson(const std::filesystem::path& path, const OdometryArgs& arg
       << ", \"scans\": " << c.scans << ", \"matched\": " << c.matched
       << ", \"degenerate\": " << c.degenerate << ", \"failed\": " << c.failed
       << ", \"gated\": " << c.gated << ", \"stale\": " << c.stale
-      << ", \"turn_held\": " << c.turn_held << ", \"heading_resets\": " << c.heading_resets
+      << ", \"turn_held\": " << c.turn_held
       << ", \"no_points\": " << c.no_points << ", \"prior_only\": " << run.prior_only
       << ", \"keyframes\": " << c.keyframes << ", \"wide_searches\": " << c.wide_searches
       << ", \"records_ignored\": " << c.records_ignored

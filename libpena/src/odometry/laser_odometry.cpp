@@ -244,11 +244,6 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
     return;
   }
   gated_in_row = 0;
-  if (HeadingOffTheFilter()) {
-    ++counts.heading_resets;
-    FallBackToPrior(points, out);
-    return;
-  }
   window.Shrink();
   const geometry::Pose2 moved = geometry::Between(local_map.latest().world_from_body, estimate);
   // A deviation trusted after prior_gate_confirm scans must re-anchor the priors at once: without

@@ -87,7 +87,6 @@ struct LaserOdometry::Impl {
   internal::GateConfirmation gate_confirmation;
   internal::FrozenOdometry frozen_odometry;  // wheel odometry only (frozen_odometry_*)
   int gated_in_row = 0;  // gated scans since the last keyframe (see prior_gate_fallback_scans)
-  int heading_off_in_row = 0;  // matched scans off the gyro + compass heading (heading_bound_rad)
   std::optional<double> last_scan_stamp_s;
   std::optional<double> previous_scan_stamp_s;  // of the scan before the one being added
   // A poor match in a fast turn not made a keyframe (keyframe_turn_*): if the next match against
@@ -137,7 +136,6 @@ struct LaserOdometry::Impl {
   bool HoldDuringFastTurn(double score, const OdometryEstimate& out) const;
   double GateBaseRad() const;
   void FallBackToPrior(const scan_matching::Points2& points, OdometryEstimate& out);
-  bool HeadingOffTheFilter();
 };
 
 }  // namespace pena::odometry

@@ -37,20 +37,6 @@ void LaserOdometry::Impl::FallBackToPrior(const scan_matching::Points2& points,
   TakeKeyframe(points, out);
 }
 
-// True when the matched heading has been off the gyro + compass filter's heading by more than
-// heading_bound_rad for heading_bound_scans scans in a row (people only; off at 0).
-bool LaserOdometry::Impl::HeadingOffTheFilter() {
-  if (!(options.heading_bound_rad > 0.0) || motion.mode() != MotionPrior::kDeadReckoning ||
-      !motion.last_pose()) {
-    return false;
-  }
-  const double off_rad = geometry::NormalizeAngle(estimate.theta_rad - motion.last_pose()->theta_rad);
-  heading_off_in_row = std::abs(off_rad) > options.heading_bound_rad ? heading_off_in_row + 1 : 0;
-  if (heading_off_in_row < options.heading_bound_scans) return false;
-  heading_off_in_row = 0;
-  return true;
-}
-
 void LaserOdometry::Impl::AbsorbStrideJumps() {
   // The poses paired with the keyframe (and with a held candidate that may become one) were
   // taken before the jump: moved with it, the motion since them leaves the corrected guess out.

@@ -93,9 +93,6 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           o.prior_gate_agree_gyro_rad);
   Require(o.prior_gate_fallback_scans >= 0, "prior_gate_fallback_scans", ">= 0 scans (0: off)",
           o.prior_gate_fallback_scans);
-  Require(o.heading_bound_rad >= 0.0 && o.heading_bound_rad < 3.141592653589793, "heading_bound_rad",
-          "in [0, pi) rad (0: off)", o.heading_bound_rad);
-  Require(o.heading_bound_scans >= 1, "heading_bound_scans", ">= 1 scans", o.heading_bound_scans);
   Require(!o.keyframe_stride_jump_share || o.keyframe_absorbs_stride_jumps,
           "keyframe_stride_jump_share", "off unless keyframe_absorbs_stride_jumps is on (flag)",
           o.keyframe_stride_jump_share ? 1.0 : 0.0);

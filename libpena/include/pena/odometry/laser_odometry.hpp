@@ -177,14 +177,6 @@ struct LaserOdometryOptions {
   // restarts there, so that it does not stay behind a walking person (office seed 4 with the
   // agreement gate: 8 s without a keyframe). 0: off. Figures: docs/odometry.md, issue 6.
   int prior_gate_fallback_scans = 0;
-  // Heading bound for people (dead reckoning only): the prior is anchored at the keyframes, so a
-  // heading error that a poor match puts into a keyframe stays for good (office seed 3 with the
-  // stride extrapolation and the keyframe hold: +7.6 deg from 152 s to the end, while the gyro +
-  // compass heading stayed within 1 deg). When the matched heading lies more than
-  // heading_bound_rad from the filter's own heading on heading_bound_scans scans in a row, the
-  // scan is handled like a failed match with that heading (see prior_gate_fallback_scans). 0: off.
-  double heading_bound_rad = 0.0;
-  int heading_bound_scans = 3;
   // People only (dead reckoning): the priors are anchored at the keyframe's dead-reckoning pose,
   // so when a stride report replaces the extrapolated stride in progress (or
   // dead_reckoning.overdue_turn_rad drops it) after a keyframe, the jump (a corrected guess about
@@ -265,7 +257,6 @@ struct OdometryCounts {
   long gated = 0;            // matches outside the prior-consistency gate (not made keyframes)
   long stale = 0;            // scans repeating an earlier scan (not made keyframes)
   long turn_held = 0;        // poor matches in fast turns not made keyframes (keyframe_turn_*)
-  long heading_resets = 0;   // restarts at the gyro + compass heading (heading_bound_rad)
   long records_ignored = 0;  // out of order or not usable (see dead reckoning counts too)
 };
 
