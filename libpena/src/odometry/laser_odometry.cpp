@@ -40,10 +40,13 @@ scan_matching::Points2 UsablePoints(const sensors::LaserScan& scan, const LaserO
 // the weak direction of J^T J; along it the prior's component is kept instead of sliding. Weakly
 // constrained ones (below slide_ratio) too when the match slid farther than max_slide_m along it:
 // their few along-track points (floor hits moving with the person, one door frame) pulled it.
+// With degenerate_slide_backward_only only slides back against travel_m (the predicted motion
+// over the last scan interval) count: returns that move with the person only ever pull back.
 // Returns the weak direction (world frame, unit) when the prior's component was kept.
 std::optional<Eigen::Vector2d> KeepPriorAlongWeakDirection(const Eigen::Matrix3d& information,
                                                            const LaserOdometryOptions& options,
                                                            const geometry::Pose2& prior,
+                                                           const Eigen::Vector2d& travel_m,
                                                            geometry::Pose2& pose) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(information.topLeftCorner<2, 2>());
   const double weak = solver.eigenvalues()(0);
@@ -53,10 +56,12 @@ std::optional<Eigen::Vector2d> KeepPriorAlongWeakDirection(const Eigen::Matrix3d
   const Eigen::Vector2d offset(prior.x_m - pose.x_m, prior.y_m - pose.y_m);
   const double slide_m = std::abs(direction.dot(offset));
   const bool degenerate = weak < options.degenerate_eigen_ratio * strong;
+  const Eigen::Vector2d shift = direction * direction.dot(offset);  // from the match to the prior
+  const bool backward = shift.dot(travel_m) > 0.0;
   const bool slid = weak < options.degenerate_slide_ratio * strong &&
-                    slide_m > options.degenerate_max_slide_m;
+                    slide_m > options.degenerate_max_slide_m &&
+                    (!options.degenerate_slide_backward_only || backward);
   if (!degenerate && !slid) return std::nullopt;
-  const Eigen::Vector2d shift = direction * direction.dot(offset);
   pose.x_m += shift.x();
   pose.y_m += shift.y();
   return direction;
@@ -230,7 +235,9 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
     return;
   }
   estimate = result.reference_from_scan;
-  match_weak_direction = KeepPriorAlongWeakDirection(result.information, options, prior, estimate);
+  const Eigen::Vector2d travel_m(prior.x_m - previous_estimate.x_m, prior.y_m - previous_estimate.y_m);
+  match_weak_direction =
+      KeepPriorAlongWeakDirection(result.information, options, prior, travel_m, estimate);
   const bool degenerate = match_weak_direction.has_value();
   out.status = degenerate ? MatchStatus::kDegenerate : MatchStatus::kMatched;
   ++(degenerate ? counts.degenerate : counts.matched);

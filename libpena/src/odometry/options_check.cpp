@@ -56,6 +56,9 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           "degenerate_slide_ratio", "in [0, 1) (0: off)", o.degenerate_slide_ratio);
   Require(o.degenerate_max_slide_m > 0.0, "degenerate_max_slide_m", "> 0 m",
           o.degenerate_max_slide_m);
+  Require(!o.degenerate_slide_backward_only || o.degenerate_slide_ratio > 0.0,
+          "degenerate_slide_backward_only", "off unless degenerate_slide_ratio > 0 (flag)",
+          o.degenerate_slide_backward_only ? 1.0 : 0.0);
   Require(o.reference_fill_spacing_m >= 0.0, "reference_fill_spacing_m", ">= 0 m (0: no fill)",
           o.reference_fill_spacing_m);
   Require(o.reference_fill_max_gap_m > 0.0, "reference_fill_max_gap_m", "> 0 m",

@@ -138,6 +138,13 @@ struct LaserOdometryOptions {
   // the prior is treated as degenerate too. 0 disables. See docs/dead-reckoning.md.
   double degenerate_slide_ratio = 0.0;
   double degenerate_max_slide_m = 0.1;
+  // With degenerate_slide_ratio: only slides back against the direction of travel (the predicted
+  // motion over the last scan interval) count. Returns that move with the person (a bend's floor
+  // line across a corridor a few metres ahead, far floor hits along it) read as an end wall that
+  // keeps its distance, so they always pull the match back towards the reference keyframes; a
+  // genuine correction of the prior can go either way (loop170 seed 8 at 106.75-109 s,
+  // docs/odometry.md, twelfth round d5). Off by default.
+  bool degenerate_slide_backward_only = false;
   // Prior-consistency gate (people and robots with a motion sensor): a match that moved the
   // pose farther from the motion prior than the sensor can be wrong by is not trusted at once:
   // the scan is not made a keyframe (a stale or aliased scan must not anchor the next priors). The allowance grows with the motion since the latest keyframe. After
