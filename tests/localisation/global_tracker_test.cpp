@@ -127,6 +127,22 @@ TEST(GlobalTracker, PairwiseFreezeDecidesTheTruePoseAfterTheUnmappedWestWing) {
   EXPECT_NEAR(geometry::NormalizeAngle(walk.decided->map_from_body.theta_rad - walk.truth.theta_rad), 0.0, 1.0 * kDeg);
 }
 
+// Ranked by recent evidence with pairwise-guarded decisions, the answer chosen by the on-plan
+// rule and the return fit on, the walk into the wing and back is still decided right (the
+// pairwise guard keeps the look-alike 6 m east from being decided as the walker comes back).
+TEST(GlobalTracker, RecentEvidenceRankingWithGuardedDecisionsDecidesTheTruePoseAfterTheWestWing) {
+  GlobalTrackerOptions options;
+  options.freeze_history_keyframes = 48;
+  options.freeze_ranking = 2;
+  options.answer_on_plan = true;
+  options.return_fit_keyframes = 4;
+  const WalkResult walk = WalkIntoTheWestWingAndBack(options);
+  ASSERT_TRUE(walk.decided.has_value());
+  EXPECT_NEAR(walk.decided->map_from_body.x_m, walk.truth.x_m, 0.1);
+  EXPECT_NEAR(walk.decided->map_from_body.y_m, walk.truth.y_m, 0.1);
+  EXPECT_NEAR(geometry::NormalizeAngle(walk.decided->map_from_body.theta_rad - walk.truth.theta_rad), 0.0, 1.0 * kDeg);
+}
+
 // With the odometry frame's heading known to within 30 deg (a compass; here 10 deg off), every
 // followed hypothesis keeps to it, and the walk west still settles on the true pose.
 TEST(GlobalTracker, HeadingToleranceKeepsEveryTrackWithinIt) {
@@ -173,6 +189,12 @@ TEST(GlobalTrackerOptions, RejectsBadValues) {
   EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
   options = {};
   options.boundary_fraction = 1.5;
+  EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
+  options = {};
+  options.freeze_ranking = 3;
+  EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
+  options = {};
+  options.return_fit_keyframes = -1;
   EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
 }
 

@@ -31,6 +31,8 @@ void Validate(const GlobalTrackerOptions& o) {
   Require(o.freeze_history_keyframes >= 0, "freeze_history_keyframes", ">= 0", o.freeze_history_keyframes);
   Require(o.boundary_fraction >= 0.0 && o.boundary_fraction <= 1.0, "boundary_fraction", "in [0, 1]",
           o.boundary_fraction);
+  Require(o.freeze_ranking >= 0 && o.freeze_ranking <= 2, "freeze_ranking", "in [0, 2]", o.freeze_ranking);
+  Require(o.return_fit_keyframes >= 0, "return_fit_keyframes", ">= 0", o.return_fit_keyframes);
   Require(o.odom_heading_tolerance_rad >= 0.0, "odom_heading_tolerance_rad", ">= 0 rad",
           o.odom_heading_tolerance_rad);
 }
@@ -111,7 +113,8 @@ double GlobalTracker::PairLead(const Track& a, const Track& b) const {
   return used >= options_.min_keyframes ? lead : a.evidence_beams - b.evidence_beams;
 }
 
-// Pairwise freeze: each track's margin is its smallest lead over any other; best margin first.
+// Pairwise freeze: each track's margin is its smallest lead over any other; best margin first
+// (freeze_ranking 0) or best recent evidence first (1, 2).
 void GlobalTracker::RankPairwise() {
   for (Track& t : tracks_) {
     t.pairwise_margin_beams = tracks_.size() > 1 ? std::numeric_limits<double>::infinity() : 0.0;
@@ -119,9 +122,22 @@ void GlobalTracker::RankPairwise() {
       if (&o != &t) t.pairwise_margin_beams = std::min(t.pairwise_margin_beams, PairLead(t, o));
     }
   }
+  if (options_.freeze_ranking > 0) {
+    std::stable_sort(tracks_.begin(), tracks_.end(), ByEvidence);
+    return;
+  }
   std::stable_sort(tracks_.begin(), tracks_.end(), [](const Track& a, const Track& b) {
     return a.pairwise_margin_beams > b.pairwise_margin_beams;
   });
+}
+
+// The track with the best smallest pairwise lead (pairwise freeze; margins from RankPairwise).
+const Track* GlobalTracker::PairwiseLeader() const {
+  const Track* best = nullptr;
+  for (const Track& t : tracks_) {
+    if (!best || t.pairwise_margin_beams > best->pairwise_margin_beams) best = &t;
+  }
+  return best;
 }
 
 // One track re-fitted at a new keyframe (Verify). With the pairwise freeze, a place off the plan
@@ -129,14 +145,17 @@ void GlobalTracker::RankPairwise() {
 // to a plan that lacks what the scan sees slid the true place 0.2-0.3 m a keyframe in the west
 // wing, which changed its evidence on the earlier keyframes too.
 void GlobalTracker::Refit(Track& t, const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body) const {
-  const geometry::Pose2 carried = geometry::Compose(t.map_from_odom, odom_from_body);
+  geometry::Pose2 carried = geometry::Compose(t.map_from_odom, odom_from_body);
   if (options_.freeze_history_keyframes > 0) {
     const BeamAgreement a = localiser_->Agreement(scan, carried);
-    if (!OnPlan(a, carried)) {
+    const bool was_on_plan = t.on_plan;
+    t.on_plan = OnPlan(a, carried);
+    if (!t.on_plan) {
       t.map_from_body = carried;
       t.agreement = a.fraction();
       return;
     }
+    if (!was_on_plan && options_.return_fit_keyframes > 0) carried = MergedFit(carried, options_.return_fit_keyframes);
   }
   const PoseHypothesis h = localiser_->Verify(scan, carried);
   t.map_from_odom = geometry::Compose(h.map_from_body, geometry::Inverse(odom_from_body));
@@ -164,7 +183,14 @@ void GlobalTracker::Prune() {
                         std::abs(geometry::NormalizeAngle(t.map_from_odom.theta_rad)) > options_.odom_heading_tolerance_rad;
     if (!duplicate && !turned) kept.push_back(t);
   }
-  if (!kept.empty() && pairwise) {
+  if (!kept.empty() && pairwise && options_.freeze_ranking > 0) {
+    // Dropped only when trailing the evidence leader both on recent evidence and pairwise.
+    const Track leader = kept.front();
+    std::erase_if(kept, [&](const Track& t) {
+      return t.keyframe_on_plan.back() && leader.evidence_beams - t.evidence_beams > options_.drop_margin_beams &&
+             PairLead(leader, t) > options_.drop_margin_beams;
+    });
+  } else if (!kept.empty() && pairwise) {
     const Track leader = kept.front();
     // A place off the plan now is kept: its comparison resumes when it is back on the plan.
     std::erase_if(kept, [&](const Track& t) {
@@ -186,10 +212,18 @@ std::optional<PoseHypothesis> GlobalTracker::Decide() const {
   }
   const Track& leader = tracks_.front();
   if (leader.agreement < options_.min_agreement || leader.walks_through_walls) return std::nullopt;
-  if (options_.freeze_history_keyframes > 0) {
+  const bool pairwise = options_.freeze_history_keyframes > 0;
+  if (pairwise && options_.decide_all_on_plan &&
+      std::any_of(tracks_.begin(), tracks_.end(), [](const Track& t) { return !t.keyframe_on_plan.empty() && !t.keyframe_on_plan.back(); })) {
+    return std::nullopt;
+  }
+  if (pairwise && options_.freeze_ranking != 1) {
     for (std::size_t i = 1; i < tracks_.size(); ++i) {
       if (PairLead(leader, tracks_[i]) < options_.decide_margin_beams) return std::nullopt;
     }
+  }
+  if (pairwise && options_.freeze_ranking == 0) {
+    // decided pairwise alone
   } else if (tracks_.size() > 1 && leader.evidence_beams - tracks_[1].evidence_beams < options_.decide_margin_beams) {
     return std::nullopt;
   }
@@ -202,21 +236,40 @@ std::optional<PoseHypothesis> GlobalTracker::Decide() const {
 
 // The latest keyframes' points in the latest body frame (placed by the odometry), fitted at once.
 geometry::Pose2 GlobalTracker::FinalFit(const Track& winner) const {
+  return MergedFit(winner.map_from_body, options_.final_keyframes);
+}
+
+// `map_from_body` (at the latest keyframe) re-fitted on the points of the latest `keyframes` kept
+// keyframes, placed in the latest body frame by the odometry.
+geometry::Pose2 GlobalTracker::MergedFit(const geometry::Pose2& map_from_body, int keyframes) const {
   const geometry::Pose2 body_from_odom = geometry::Inverse(keyframes_.back().odom_from_body);
   scan_matching::Points2 merged;
-  const std::size_t n = std::min(keyframes_.size(), static_cast<std::size_t>(options_.final_keyframes));
+  const std::size_t n = std::min(keyframes_.size(), static_cast<std::size_t>(keyframes));
   for (std::size_t i = keyframes_.size() - n; i < keyframes_.size(); ++i) {
     const geometry::Pose2 latest_from_k = geometry::Compose(body_from_odom, keyframes_[i].odom_from_body);
     for (const Eigen::Vector2d& p : scan_matching::ScanToPoints(keyframes_[i].scan, 0.1)) {
       merged.push_back(geometry::TransformPoint(latest_from_k, p));
     }
   }
-  return localiser_->FitMerged(merged, winner.map_from_body).map_from_body;
+  return localiser_->FitMerged(merged, map_from_body).map_from_body;
 }
 
 GlobalResult GlobalTracker::Ranked() const {
   GlobalResult ranked;
-  for (const Track& t : tracks_) {
+  std::vector<const Track*> order;
+  for (const Track& t : tracks_) order.push_back(&t);
+  if (options_.freeze_history_keyframes > 0 && options_.answer_on_plan && !tracks_.empty()) {
+    // The evidence leader when it is off the plan now, else the pairwise leader, goes first.
+    const Track* evidence = &*std::max_element(tracks_.begin(), tracks_.end(), [](const Track& a, const Track& b) {
+      return a.evidence_beams < b.evidence_beams;
+    });
+    const bool on_plan = evidence->keyframe_on_plan.empty() || evidence->keyframe_on_plan.back();
+    const Track* answer = on_plan ? PairwiseLeader() : evidence;
+    const auto it = std::find(order.begin(), order.end(), answer);
+    std::rotate(order.begin(), it, it + 1);
+  }
+  for (const Track* tp : order) {
+    const Track& t = *tp;
     PoseHypothesis h;
     h.map_from_body = t.map_from_body;
     h.agreement = t.agreement;

@@ -60,6 +60,27 @@ struct GlobalTrackerOptions {
   // Off: on office better on the west-wing starts but worse on the annex (docs/localisation.md).
   int freeze_history_keyframes = 0;
   double boundary_fraction = 0.1;
+  // With the pairwise freeze only: how tracks are ranked and decided.
+  //  0: by the smallest pairwise lead (above);
+  //  1: by the evidence over the latest max_keyframes (as without the freeze); a track is dropped
+  //     only when the leader leads it by drop_margin_beams both on that evidence and pairwise
+  //     (and it is on the plan at the latest keyframe); decisions as without the freeze;
+  //  2: as 1, and the leader must also lead every other track pairwise by decide_margin_beams.
+  // Office: in the annex passage (off the plan) the true place leads on recent evidence while a
+  // north room leads pairwise; at the west end it is the other way round (docs/localisation.md).
+  int freeze_ranking = 0;
+  // With the pairwise freeze only (false = off): the answer before a decision (the first of
+  // TrackerUpdate::ranked) is the evidence leader when it is off the plan at the latest keyframe,
+  // else the pairwise leader (the track with the best smallest pairwise lead).
+  bool answer_on_plan = false;
+  // With the pairwise freeze only (0 = off): a track back on the plan after being carried off it
+  // is re-fitted on the points of its latest this many keyframes at once (FitMerged, final_window):
+  // carried by the odometry, the true place drifts 0.3-0.4 m along the annex passage.
+  int return_fit_keyframes = 0;
+  // With the pairwise freeze only (false = off): no decision while any followed track is off the
+  // plan at the latest keyframe (it cannot be refuted there). Office: walking down the annex
+  // passage, a north room at (37.1, 19.1) was decided while the true place was off the plan.
+  bool decide_all_on_plan = false;
 };
 
 // One followed hypothesis.
@@ -74,6 +95,7 @@ struct Track {
   std::vector<double> keyframe_beams;
   std::vector<bool> keyframe_on_plan;
   double pairwise_margin_beams = 0.0;  // its smallest lead over any other (pairwise freeze only)
+  bool on_plan = true;                 // on the plan at the latest keyframe (pairwise freeze only)
 };
 
 // What one update concluded.
@@ -110,6 +132,8 @@ class GlobalTracker {
   double PairLead(const Track& a, const Track& b) const;
   std::optional<PoseHypothesis> Decide() const;
   geometry::Pose2 FinalFit(const Track& winner) const;
+  geometry::Pose2 MergedFit(const geometry::Pose2& map_from_body, int keyframes) const;
+  const Track* PairwiseLeader() const;
   GlobalResult Ranked() const;
 
   const GlobalLocaliser* localiser_;
