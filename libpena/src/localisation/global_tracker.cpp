@@ -212,19 +212,18 @@ std::optional<PoseHypothesis> GlobalTracker::Decide() const {
   }
   const Track& leader = tracks_.front();
   if (leader.agreement < options_.min_agreement || leader.walks_through_walls) return std::nullopt;
+  // The margin is pairwise (freeze_ranking 0), on recent evidence (no freeze, or ranking 1), or
+  // both (ranking 2).
   const bool pairwise = options_.freeze_history_keyframes > 0;
-  if (pairwise && options_.decide_all_on_plan &&
-      std::any_of(tracks_.begin(), tracks_.end(), [](const Track& t) { return !t.keyframe_on_plan.empty() && !t.keyframe_on_plan.back(); })) {
-    return std::nullopt;
-  }
-  if (pairwise && options_.freeze_ranking != 1) {
+  const bool pairwise_margin = pairwise && options_.freeze_ranking != 1;
+  const bool evidence_margin = !pairwise || options_.freeze_ranking > 0;
+  if (pairwise_margin) {
     for (std::size_t i = 1; i < tracks_.size(); ++i) {
       if (PairLead(leader, tracks_[i]) < options_.decide_margin_beams) return std::nullopt;
     }
   }
-  if (pairwise && options_.freeze_ranking == 0) {
-    // decided pairwise alone
-  } else if (tracks_.size() > 1 && leader.evidence_beams - tracks_[1].evidence_beams < options_.decide_margin_beams) {
+  if (evidence_margin && tracks_.size() > 1 &&
+      leader.evidence_beams - tracks_[1].evidence_beams < options_.decide_margin_beams) {
     return std::nullopt;
   }
   PoseHypothesis winner;

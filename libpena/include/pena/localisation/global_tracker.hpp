@@ -77,10 +77,6 @@ struct GlobalTrackerOptions {
   // is re-fitted on the points of its latest this many keyframes at once (FitMerged, final_window):
   // carried by the odometry, the true place drifts 0.3-0.4 m along the annex passage.
   int return_fit_keyframes = 0;
-  // With the pairwise freeze only (false = off): no decision while any followed track is off the
-  // plan at the latest keyframe (it cannot be refuted there). Office: walking down the annex
-  // passage, a north room at (37.1, 19.1) was decided while the true place was off the plan.
-  bool decide_all_on_plan = false;
 };
 
 // One followed hypothesis.
