@@ -109,6 +109,7 @@ void ApplySettings(localisation::LocalisationChainOptions& chain) {
     else if (name == "freeze_ranking") o.freeze_ranking = static_cast<int>(value);
     else if (name == "answer_on_plan") o.answer_on_plan = value != 0.0;
     else if (name == "return_fit_keyframes") o.return_fit_keyframes = static_cast<int>(value);
+    else if (name == "min_followed_keyframes") o.min_followed_keyframes = static_cast<int>(value);
     else if (name == "compass_tolerance_deg") chain.compass_tolerance_rad = value * kDeg;
     else {
       std::fprintf(stderr, "PENA_BENCH_SET: unknown tracker option %s\n", name.c_str());

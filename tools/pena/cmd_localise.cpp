@@ -50,7 +50,9 @@ geometry::Pose2 ParsePose(const std::string& text, const std::string& option) {
 // Applies --set NAME=VALUE to the plan-matching options (names as in MapLocaliserOptions) and,
 // prefixed "odometry.", to the odometry underneath (the names of `pena odometry --set`), and
 // global.compass_tolerance_deg (LocalisationChainOptions::compass_tolerance_rad, in degrees),
-// global.freeze_history_keyframes and global.boundary_fraction (GlobalTrackerOptions) and
+// global.freeze_history_keyframes, global.boundary_fraction, global.freeze_ranking,
+// global.answer_on_plan (0/1), global.return_fit_keyframes and global.min_followed_keyframes
+// (GlobalTrackerOptions) and
 // relocalise_after_rounds (LocalisationChainOptions, plan rounds; 0 = off);
 // integer options are rounded; unknown names are errors. The options are validated by
 // MapLocaliser's constructor as usual.
@@ -71,10 +73,17 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
       {"recast_min_rad", &o.recast_min_rad},
       {"along_search_m", &o.along_search_m},
       {"along_search_step_m", &o.along_search_step_m},
-      {"matcher.threshold_m", &o.matcher.threshold_m}};
-  const std::map<std::string, int*> ints = {{"min_hits", &o.min_hits},
-                                            {"outside_after_failures", &o.outside_after_failures},
-                                            {"oversample", &o.oversample}};
+      {"matcher.threshold_m", &o.matcher.threshold_m},
+      {"global.boundary_fraction", &chain.tracker.boundary_fraction}};
+  const std::map<std::string, int*> ints = {
+      {"min_hits", &o.min_hits},
+      {"outside_after_failures", &o.outside_after_failures},
+      {"oversample", &o.oversample},
+      {"global.freeze_history_keyframes", &chain.tracker.freeze_history_keyframes},
+      {"global.freeze_ranking", &chain.tracker.freeze_ranking},
+      {"global.return_fit_keyframes", &chain.tracker.return_fit_keyframes},
+      {"global.min_followed_keyframes", &chain.tracker.min_followed_keyframes},
+      {"relocalise_after_rounds", &chain.relocalise_after_rounds}};
   for (const std::string& setting : settings) {
     if (setting.starts_with(kSmooth)) continue;  // SmootherOptions, with --smooth
     if (setting.starts_with(kOdometry)) {
@@ -84,12 +93,8 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
     const auto [name, value] = ParseSetting(setting);
     if (name == "global.compass_tolerance_deg") {
       chain.compass_tolerance_rad = value * kDeg;
-    } else if (name == "global.freeze_history_keyframes") {
-      chain.tracker.freeze_history_keyframes = static_cast<int>(std::lround(value));
-    } else if (name == "global.boundary_fraction") {
-      chain.tracker.boundary_fraction = value;
-    } else if (name == "relocalise_after_rounds") {
-      chain.relocalise_after_rounds = static_cast<int>(std::lround(value));
+    } else if (name == "global.answer_on_plan") {
+      chain.tracker.answer_on_plan = value != 0.0;
     } else if (name == "window.size_xy_m") {
       o.window.size_x_m = o.window.size_y_m = value;
     } else if (name == "max_window.size_xy_m") {

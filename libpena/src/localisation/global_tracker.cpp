@@ -33,6 +33,7 @@ void Validate(const GlobalTrackerOptions& o) {
           o.boundary_fraction);
   Require(o.freeze_ranking >= 0 && o.freeze_ranking <= 2, "freeze_ranking", "in [0, 2]", o.freeze_ranking);
   Require(o.return_fit_keyframes >= 0, "return_fit_keyframes", ">= 0", o.return_fit_keyframes);
+  Require(o.min_followed_keyframes >= 0, "min_followed_keyframes", ">= 0", o.min_followed_keyframes);
   Require(o.odom_heading_tolerance_rad >= 0.0, "odom_heading_tolerance_rad", ">= 0 rad",
           o.odom_heading_tolerance_rad);
 }
@@ -175,9 +176,12 @@ void GlobalTracker::Prune() {
   else std::stable_sort(tracks_.begin(), tracks_.end(), ByEvidence);
   std::vector<Track> kept;
   for (const Track& t : tracks_) {
-    const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const Track& k) {
+    const auto same = std::find_if(kept.begin(), kept.end(), [&](const Track& k) {
       return SamePlace(k.map_from_body, t.map_from_body);
     });
+    const bool duplicate = same != kept.end();
+    // One place: it has been followed since the older of the two was found.
+    if (duplicate) same->followed_keyframes = std::max(same->followed_keyframes, t.followed_keyframes);
     // Verify's small turns at each keyframe can add up past the heading bound.
     const bool turned = options_.odom_heading_tolerance_rad > 0.0 &&
                         std::abs(geometry::NormalizeAngle(t.map_from_odom.theta_rad)) > options_.odom_heading_tolerance_rad;
@@ -211,7 +215,10 @@ std::optional<PoseHypothesis> GlobalTracker::Decide() const {
     return std::nullopt;
   }
   const Track& leader = tracks_.front();
-  if (leader.agreement < options_.min_agreement || leader.walks_through_walls) return std::nullopt;
+  if (leader.agreement < options_.min_agreement || leader.walks_through_walls ||
+      leader.followed_keyframes < options_.min_followed_keyframes) {
+    return std::nullopt;
+  }
   // The margin is pairwise (freeze_ranking 0), on recent evidence (no freeze, or ranking 1), or
   // both (ranking 2).
   const bool pairwise = options_.freeze_history_keyframes > 0;
@@ -292,7 +299,10 @@ TrackerUpdate GlobalTracker::Update(const sensors::LaserScan& scan, const geomet
   const int kept = std::max(options_.max_keyframes, options_.freeze_history_keyframes);
   if (keyframes_.size() > static_cast<std::size_t>(kept)) keyframes_.erase(keyframes_.begin());
   // Existing tracks re-fitted at this scan (the odometry carried them here) ...
-  for (Track& t : tracks_) Refit(t, scan, odom_from_body);
+  for (Track& t : tracks_) {
+    Refit(t, scan, odom_from_body);
+    ++t.followed_keyframes;
+  }
   // ... new places from a whole-plan search when due, then all scored on the same keyframes.
   TrackerUpdate update;
   if (tracks_.empty() || since_search_m_ >= options_.search_every_m) {

@@ -57,9 +57,11 @@ struct GlobalTrackerOptions {
   // Tracks are then ranked by their smallest pairwise lead; the winner leads every other by
   // decide_margin_beams; tracks trailing the leader by drop_margin_beams are dropped unless off
   // the plan at the latest keyframe; a track off the plan is carried by the odometry, not re-fitted.
-  // Off: on office better on the west-wing starts but worse on the annex (docs/localisation.md).
-  int freeze_history_keyframes = 0;
-  double boundary_fraction = 0.1;
+  // On by default since session 14 together with the three options below and the chain's compass
+  // bound: 75 / 100 office starts against 68 with none of them (docs/localisation.md, "Session
+  // 14"); alone it was better on the west-wing starts but worse on the annex.
+  int freeze_history_keyframes = 48;
+  double boundary_fraction = 0.25;
   // With the pairwise freeze only: how tracks are ranked and decided.
   //  0: by the smallest pairwise lead (above);
   //  1: by the evidence over the latest max_keyframes (as without the freeze); a track is dropped
@@ -68,15 +70,20 @@ struct GlobalTrackerOptions {
   //  2: as 1, and the leader must also lead every other track pairwise by decide_margin_beams.
   // Office: in the annex passage (off the plan) the true place leads on recent evidence while a
   // north room leads pairwise; at the west end it is the other way round (docs/localisation.md).
-  int freeze_ranking = 0;
+  int freeze_ranking = 2;
   // With the pairwise freeze only (false = off): the answer before a decision (the first of
   // TrackerUpdate::ranked) is the evidence leader when it is off the plan at the latest keyframe,
   // else the pairwise leader (the track with the best smallest pairwise lead).
-  bool answer_on_plan = false;
+  bool answer_on_plan = true;
   // With the pairwise freeze only (0 = off): a track back on the plan after being carried off it
   // is re-fitted on the points of its latest this many keyframes at once (FitMerged, final_window):
   // carried by the odometry, the true place drifts 0.3-0.4 m along the annex passage.
-  int return_fit_keyframes = 0;
+  int return_fit_keyframes = 4;
+  // A track is decided only after it has been followed (re-fitted) over this many keyframes since
+  // the search that found it (0 = off): its evidence on the earlier keyframes is the odometry's
+  // replay, which a place found while the true one is off the plan wins without having been
+  // checked on a single new scan (office: a north room found on walking into the annex).
+  int min_followed_keyframes = 2;
 };
 
 // One followed hypothesis.
@@ -92,6 +99,7 @@ struct Track {
   std::vector<bool> keyframe_on_plan;
   double pairwise_margin_beams = 0.0;  // its smallest lead over any other (pairwise freeze only)
   bool on_plan = true;                 // on the plan at the latest keyframe (pairwise freeze only)
+  int followed_keyframes = 0;          // keyframes it was re-fitted at since its search found it
 };
 
 // What one update concluded.
