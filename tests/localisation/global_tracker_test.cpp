@@ -122,8 +122,13 @@ WalkResult WalkIntoTheWestWingAndBack(const GlobalTrackerOptions& options) {
 // carries it. Without the freeze the look-alike 6 m east is decided as the walker comes back
 // (about x 3, docs/localisation.md).
 TEST(GlobalTracker, PairwiseFreezeDecidesTheTruePoseAfterTheUnmappedWestWing) {
-  GlobalTrackerOptions options;
+  GlobalTrackerOptions options;  // the freeze alone (session 11), ranked by the smallest lead
   options.freeze_history_keyframes = 48;
+  options.boundary_fraction = 0.1;
+  options.freeze_ranking = 0;
+  options.answer_on_plan = false;
+  options.return_fit_keyframes = 0;
+  options.min_followed_keyframes = 0;
   const WalkResult walk = WalkIntoTheWestWingAndBack(options);
   ASSERT_TRUE(walk.decided.has_value());
   EXPECT_NEAR(walk.decided->map_from_body.x_m, walk.truth.x_m, 0.1);
