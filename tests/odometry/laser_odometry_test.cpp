@@ -218,5 +218,26 @@ TEST(LaserOdometry, InvalidOptionNamesField) {
   }
 }
 
+// drop_walker_fixed_points (thirteenth round): people's dead reckoning only; a robot's run is
+// unchanged, and the walkers' bends give it something to drop.
+TEST(LaserOdometry, DropsWalkerFixedReturnsForPeopleOnly) {
+  LaserOdometryOptions on;
+  on.drop_walker_fixed_points = true;
+  const Replayed robot = Replay(Entity("robot1"), on);
+  const Replayed robot_off = Replay(Entity("robot1"));
+  EXPECT_EQ(robot.counts.walker_fixed_dropped, 0);
+  ASSERT_EQ(robot.estimates.size(), robot_off.estimates.size());
+  for (std::size_t i = 0; i < robot.estimates.size(); ++i) {
+    EXPECT_EQ(robot.estimates[i].world_from_body.x_m, robot_off.estimates[i].world_from_body.x_m);
+    EXPECT_EQ(robot.estimates[i].world_from_body.y_m, robot_off.estimates[i].world_from_body.y_m);
+  }
+  EXPECT_GT(Replay(Entity("ff1"), on).counts.walker_fixed_dropped, 0);
+  EXPECT_EQ(Replay(Entity("ff1")).counts.walker_fixed_dropped, 0);
+  // Its thresholds are checked even when it is off.
+  LaserOdometryOptions bad;
+  bad.walker_fixed_points_static_m = 0.0;
+  EXPECT_THROW(LaserOdometry(bad, sensors::EntityKind::kHuman, {}, 0.0), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace pena::odometry

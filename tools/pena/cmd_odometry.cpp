@@ -204,8 +204,10 @@ void WriteSummaryJson(const std::filesystem::path& path, const OdometryArgs& arg
       << ", \"scans\": " << c.scans << ", \"matched\": " << c.matched
       << ", \"degenerate\": " << c.degenerate << ", \"failed\": " << c.failed
       << ", \"gated\": " << c.gated << ", \"stale\": " << c.stale
-      << ", \"turn_held\": " << c.turn_held
-      << ", \"no_points\": " << c.no_points << ", \"prior_only\": " << run.prior_only
+      << ", \"turn_held\": " << c.turn_held;
+  // Only when drop_walker_fixed_points dropped any: the defaults' summary stays as it was.
+  if (c.walker_fixed_dropped > 0) out << ", \"walker_fixed_dropped\": " << c.walker_fixed_dropped;
+  out << ", \"no_points\": " << c.no_points << ", \"prior_only\": " << run.prior_only
       << ", \"keyframes\": " << c.keyframes << ", \"wide_searches\": " << c.wide_searches
       << ", \"records_ignored\": " << c.records_ignored
       << ", \"log_duration_s\": " << Fixed(run.last_stamp_s - run.first_stamp_s, 6)

@@ -1,5 +1,7 @@
 #include "pena/odometry/laser_odometry.hpp"
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -109,7 +111,8 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   out.world_from_prior = Predict(scan);
   match_weak_direction.reset();
   poor_timing = timing.Add(scan.stamp_s);
-  const scan_matching::Points2 points = UsablePoints(scan, options);
+  scan_matching::Points2 points = UsablePoints(scan, options);
+  if (drop_walker_fixed) points = DropWalkerFixed(std::move(points));
   out.points = static_cast<int>(points.size());
   out.stale = stale_scans.IsStale(scan);
   counts.stale += out.stale ? 1 : 0;
@@ -145,7 +148,19 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
 }
 
 geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
+  const std::optional<geometry::Pose2> motion_before = motion.last_pose();
   const geometry::Pose2 increment = motion.TakeIncrement(scan);
+  if (drop_walker_fixed) {
+    // A stride report replacing the extrapolated stride corrects the past: not motion between
+    // these two scans (up to 0.3 m, more than the walker-fixed test's static tolerance).
+    smooth_increment = increment;
+    if (motion_before) {
+      const Eigen::Vector2d jump_m =
+          Eigen::Rotation2Dd(-motion_before->theta_rad) * motion.stride_jump_m();
+      smooth_increment.x_m -= jump_m.x();
+      smooth_increment.y_m -= jump_m.y();
+    }
+  }
   if (options.keyframe_absorbs_stride_jumps) AbsorbStrideJumps();
   const auto& motion_pose = motion.last_pose();
   motion_since_keyframe.reset();
@@ -170,6 +185,15 @@ geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
   // would add that catch-up on top of the motion the matcher already found.
   return geometry::Compose(local_map.latest().world_from_body,
                            geometry::Between(*keyframe_motion_pose, *motion_pose));
+}
+
+scan_matching::Points2 LaserOdometry::Impl::DropWalkerFixed(scan_matching::Points2 points) {
+  const std::vector<bool> moving = walker_fixed.Find(previous_points, points, smooth_increment);
+  previous_points = points;  // the next scan is compared with all of this one's returns
+  const auto dropped = std::count(moving.begin(), moving.end(), true);
+  if (dropped == 0) return points;
+  counts.walker_fixed_dropped += dropped;
+  return internal::WithoutMarked(points, moving);
 }
 
 scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Points2& points,

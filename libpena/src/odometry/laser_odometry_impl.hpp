@@ -17,6 +17,7 @@
 #include "pena/scan_matching/correlation_scan_matcher.hpp"
 #include "search_window.hpp"
 #include "stale_scan.hpp"
+#include "walker_fixed_points.hpp"
 
 namespace pena::odometry {
 namespace internal {
@@ -25,6 +26,20 @@ inline PlaceChoice PlaceChoiceOf(const LaserOdometryOptions& o) {
   return {o.local_map_pool_keyframes, o.local_map_pool_age_s, o.local_map_recent_keyframes,
           o.local_map_place_radius_m, o.keyframe_distance_m, o.keyframe_angle_rad,
           o.local_map_place_fill_recent};
+}
+
+inline WalkerFixedPointsOptions WalkerFixedPointsOf(const LaserOdometryOptions& o) {
+  WalkerFixedPointsOptions options;
+  options.min_forward_m = o.walker_fixed_points_min_forward_m;
+  options.body_along_m = o.walker_fixed_points_body_along_m;
+  options.body_across_m = o.walker_fixed_points_body_across_m;
+  options.static_m = o.walker_fixed_points_static_m;
+  options.static_per_range_m = o.walker_fixed_points_static_per_range_m;
+  options.outline_max_gap_m = o.walker_fixed_points_outline_max_gap_m;
+  options.max_turn_rad = o.walker_fixed_points_max_turn_rad;
+  options.min_run_points = o.walker_fixed_points_min_run_points;
+  options.max_fraction = o.walker_fixed_points_max_fraction;
+  return options;
 }
 
 }  // namespace internal
@@ -52,7 +67,9 @@ struct LaserOdometry::Impl {
                           checked.prior_gate_agree_gyro_rad),
         frozen_odometry(  // robots' wheel odometry only
             mode == MotionPrior::kOdometry ? checked.frozen_odometry_min_turn_rad : 0.0,
-            mode == MotionPrior::kOdometry ? checked.frozen_odometry_min_move_m : 0.0) {}
+            mode == MotionPrior::kOdometry ? checked.frozen_odometry_min_move_m : 0.0),
+        walker_fixed(internal::WalkerFixedPointsOf(checked)),  // checked even when off
+        drop_walker_fixed(checked.drop_walker_fixed_points && mode == MotionPrior::kDeadReckoning) {}
 
   LaserOdometryOptions options;
   internal::MotionTracker motion;
@@ -102,10 +119,18 @@ struct LaserOdometry::Impl {
     std::optional<Eigen::Vector2d> weak_direction;  // as keyframe_weak_direction
   };
   std::optional<HeldCandidate> held;
+  // drop_walker_fixed_points (people's dead reckoning only): the previous scan's usable returns
+  // (laser frame, beam order) and the dead reckoning's motion since it, stride jumps taken out.
+  internal::WalkerFixedPoints walker_fixed;
+  bool drop_walker_fixed;
+  scan_matching::Points2 previous_points;
+  geometry::Pose2 smooth_increment;
   OdometryCounts counts;
 
   OdometryEstimate AddScan(const sensors::LaserScan& scan);
   geometry::Pose2 Predict(const sensors::LaserScan& scan);
+  // drop_walker_fixed_points: `points` without the returns that move with the body.
+  scan_matching::Points2 DropWalkerFixed(scan_matching::Points2 points);
   // keyframe_absorbs_stride_jumps: moves the keyframe's (and a held candidate's) motion pose.
   void AbsorbStrideJumps();
   // The part of the jumps since the previous scan that a motion pose taken at stamp_s absorbs.
