@@ -26,6 +26,19 @@ Setting ParseSetting(const std::string& setting) {
   return {setting.substr(0, equals), value};
 }
 
+bool ApplySetting(const SettingTargets& targets, const Setting& setting) {
+  if (const auto d = targets.doubles.find(setting.name); d != targets.doubles.end()) {
+    *d->second = setting.value;
+  } else if (const auto i = targets.ints.find(setting.name); i != targets.ints.end()) {
+    *i->second = static_cast<int>(std::lround(setting.value));
+  } else if (const auto f = targets.flags.find(setting.name); f != targets.flags.end()) {
+    *f->second = setting.value != 0.0;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 std::string JsonString(const std::string& text) {
   std::string quoted = "\"";
   for (const char c : text) {

@@ -3,6 +3,7 @@
 // progress line on long logs, and the rule for where a run over a log starts.
 
 #include <chrono>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,16 @@ struct Setting {
   double value = 0.0;
 };
 Setting ParseSetting(const std::string& setting);
+
+// The option fields a subcommand's --set may change, by name: numbers, integers (rounded) and
+// flags (0 off, anything else on).
+struct SettingTargets {
+  std::map<std::string, double*> doubles;
+  std::map<std::string, int*> ints;
+  std::map<std::string, bool*> flags;
+};
+// Sets the field named `setting.name`; false (nothing changed) when no target has that name.
+bool ApplySetting(const SettingTargets& targets, const Setting& setting);
 
 // One stderr line, rewritten in place on a terminal (a plain line otherwise), at most every 2 s.
 class ProgressLine {

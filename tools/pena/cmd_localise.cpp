@@ -61,50 +61,44 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
   constexpr std::string_view kOdometry = "odometry.";
   constexpr std::string_view kSmooth = "smooth.";
   std::vector<std::string> odometry_settings;
-  const std::map<std::string, double*> doubles = {
-      {"min_score", &o.min_score},
-      {"reacquire_min_score", &o.reacquire_min_score},
-      {"window_growth", &o.window_growth},
-      {"max_range_m", &o.max_range_m},
-      {"degenerate_eigen_ratio", &o.degenerate_eigen_ratio},
-      {"along_probe_m", &o.along_probe_m},
-      {"along_min_drop", &o.along_min_drop},
-      {"recast_min_m", &o.recast_min_m},
-      {"recast_min_rad", &o.recast_min_rad},
-      {"along_search_m", &o.along_search_m},
-      {"along_search_step_m", &o.along_search_step_m},
-      {"matcher.threshold_m", &o.matcher.threshold_m},
-      {"global.boundary_fraction", &chain.tracker.boundary_fraction}};
-  const std::map<std::string, int*> ints = {
-      {"min_hits", &o.min_hits},
-      {"outside_after_failures", &o.outside_after_failures},
-      {"oversample", &o.oversample},
-      {"global.freeze_history_keyframes", &chain.tracker.freeze_history_keyframes},
-      {"global.freeze_ranking", &chain.tracker.freeze_ranking},
-      {"global.return_fit_keyframes", &chain.tracker.return_fit_keyframes},
-      {"global.min_followed_keyframes", &chain.tracker.min_followed_keyframes},
-      {"relocalise_after_rounds", &chain.relocalise_after_rounds}};
-  for (const std::string& setting : settings) {
-    if (setting.starts_with(kSmooth)) continue;  // SmootherOptions, with --smooth
-    if (setting.starts_with(kOdometry)) {
-      odometry_settings.push_back(setting.substr(kOdometry.size()));
+  SettingTargets targets;
+  targets.doubles = {{"min_score", &o.min_score},
+                     {"reacquire_min_score", &o.reacquire_min_score},
+                     {"window_growth", &o.window_growth},
+                     {"max_range_m", &o.max_range_m},
+                     {"degenerate_eigen_ratio", &o.degenerate_eigen_ratio},
+                     {"along_probe_m", &o.along_probe_m},
+                     {"along_min_drop", &o.along_min_drop},
+                     {"recast_min_m", &o.recast_min_m},
+                     {"recast_min_rad", &o.recast_min_rad},
+                     {"along_search_m", &o.along_search_m},
+                     {"along_search_step_m", &o.along_search_step_m},
+                     {"matcher.threshold_m", &o.matcher.threshold_m},
+                     {"global.boundary_fraction", &chain.tracker.boundary_fraction}};
+  targets.ints = {{"min_hits", &o.min_hits},
+                  {"outside_after_failures", &o.outside_after_failures},
+                  {"oversample", &o.oversample},
+                  {"global.freeze_history_keyframes", &chain.tracker.freeze_history_keyframes},
+                  {"global.freeze_ranking", &chain.tracker.freeze_ranking},
+                  {"global.return_fit_keyframes", &chain.tracker.return_fit_keyframes},
+                  {"global.min_followed_keyframes", &chain.tracker.min_followed_keyframes},
+                  {"relocalise_after_rounds", &chain.relocalise_after_rounds}};
+  targets.flags = {{"global.answer_on_plan", &chain.tracker.answer_on_plan}};
+  for (const std::string& text : settings) {
+    if (text.starts_with(kSmooth)) continue;  // SmootherOptions, with --smooth
+    if (text.starts_with(kOdometry)) {
+      odometry_settings.push_back(text.substr(kOdometry.size()));
       continue;
     }
-    const auto [name, value] = ParseSetting(setting);
-    if (name == "global.compass_tolerance_deg") {
-      chain.compass_tolerance_rad = value * kDeg;
-    } else if (name == "global.answer_on_plan") {
-      chain.tracker.answer_on_plan = value != 0.0;
-    } else if (name == "window.size_xy_m") {
-      o.window.size_x_m = o.window.size_y_m = value;
-    } else if (name == "max_window.size_xy_m") {
-      o.max_window.size_x_m = o.max_window.size_y_m = value;
-    } else if (const auto d = doubles.find(name); d != doubles.end()) {
-      *d->second = value;
-    } else if (const auto i = ints.find(name); i != ints.end()) {
-      *i->second = static_cast<int>(std::lround(value));
-    } else {
-      throw std::runtime_error("--set: unknown option '" + name + "' (see docs/localisation.md)");
+    const Setting setting = ParseSetting(text);
+    if (setting.name == "global.compass_tolerance_deg") {
+      chain.compass_tolerance_rad = setting.value * kDeg;
+    } else if (setting.name == "window.size_xy_m") {
+      o.window.size_x_m = o.window.size_y_m = setting.value;
+    } else if (setting.name == "max_window.size_xy_m") {
+      o.max_window.size_x_m = o.max_window.size_y_m = setting.value;
+    } else if (!ApplySetting(targets, setting)) {
+      throw std::runtime_error("--set: unknown option '" + setting.name + "' (see docs/localisation.md)");
     }
   }
   ApplyOdometrySettings(odometry_settings, chain.odometry);
@@ -114,7 +108,8 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
 // validated by SmoothTrajectory); unknown names are errors.
 localisation::TrajectorySmootherOptions SmootherOptions(const std::vector<std::string>& settings) {
   localisation::TrajectorySmootherOptions o;
-  const std::map<std::string, double*> doubles = {
+  SettingTargets targets;
+  targets.doubles = {
       {"smooth.round_sigma_m", &o.round_sigma_m},
       {"smooth.degenerate_along_sigma_m", &o.degenerate_along_sigma_m},
       {"smooth.odometry_sigma_m", &o.odometry_sigma_m},
@@ -123,15 +118,13 @@ localisation::TrajectorySmootherOptions SmootherOptions(const std::vector<std::s
       {"smooth.odometry_sigma_rad_per_rad", &o.odometry_sigma_rad_per_rad},
       {"smooth.odometry_sigma_rad_per_m", &o.odometry_sigma_rad_per_m},
       {"smooth.start_sigma_m", &o.start_sigma_m}};
-  for (const std::string& setting : settings) {
-    if (!setting.starts_with("smooth.")) continue;
-    const auto [name, value] = ParseSetting(setting);
-    if (name == "smooth.round_sigma_deg") {
-      o.round_sigma_rad = value * kDeg;
-    } else if (const auto d = doubles.find(name); d != doubles.end()) {
-      *d->second = value;
-    } else {
-      throw std::runtime_error("--set: unknown option '" + name + "' (see docs/localisation.md)");
+  for (const std::string& text : settings) {
+    if (!text.starts_with("smooth.")) continue;
+    const Setting setting = ParseSetting(text);
+    if (setting.name == "smooth.round_sigma_deg") {
+      o.round_sigma_rad = setting.value * kDeg;
+    } else if (!ApplySetting(targets, setting)) {
+      throw std::runtime_error("--set: unknown option '" + setting.name + "' (see docs/localisation.md)");
     }
   }
   return o;

@@ -1,6 +1,5 @@
 #include "odometry_settings.hpp"
 
-#include <cmath>
 #include <map>
 #include <stdexcept>
 
@@ -75,25 +74,20 @@ std::map<std::string, double*> SettableOptions(odometry::LaserOdometryOptions& o
 
 void ApplyOdometrySettings(const std::vector<std::string>& settings,
                            odometry::LaserOdometryOptions& o) {
-  std::map<std::string, double*> doubles = SettableOptions(o);
-  const std::map<std::string, int*> ints = {{"local_map_keyframes", &o.local_map_keyframes},
-                                            {"local_map_pool_keyframes",
-                                             &o.local_map_pool_keyframes},
-                                            {"local_map_place_fill_frozen_scans",
-                                             &o.local_map_place_fill_frozen_scans},
-                                            {"local_map_recent_keyframes",
-                                             &o.local_map_recent_keyframes},
-                                            {"min_match_points", &o.min_match_points},
-                                            {"prior_gate_confirm", &o.prior_gate_confirm},
-                                            {"prior_gate_confirm_gyro", &o.prior_gate_confirm_gyro},
-                                            {"walker_fixed_points_min_run_points",
-                                             &o.walker_fixed_points_min_run_points},
-                                            {"prior_gate_fallback_scans",
-                                             &o.prior_gate_fallback_scans},
-                                            {"stale_history_scans", &o.stale_history_scans},
-                                            {"timing_burst_window_scans",
-                                             &o.timing_burst_window_scans}};
-  const std::map<std::string, bool*> flags = {
+  SettingTargets targets;
+  targets.doubles = SettableOptions(o);
+  targets.ints = {{"local_map_keyframes", &o.local_map_keyframes},
+                  {"local_map_pool_keyframes", &o.local_map_pool_keyframes},
+                  {"local_map_place_fill_frozen_scans", &o.local_map_place_fill_frozen_scans},
+                  {"local_map_recent_keyframes", &o.local_map_recent_keyframes},
+                  {"min_match_points", &o.min_match_points},
+                  {"prior_gate_confirm", &o.prior_gate_confirm},
+                  {"prior_gate_confirm_gyro", &o.prior_gate_confirm_gyro},
+                  {"walker_fixed_points_min_run_points", &o.walker_fixed_points_min_run_points},
+                  {"prior_gate_fallback_scans", &o.prior_gate_fallback_scans},
+                  {"stale_history_scans", &o.stale_history_scans},
+                  {"timing_burst_window_scans", &o.timing_burst_window_scans}};
+  targets.flags = {
       {"dead_reckoning.stride_calibration.enabled", &o.dead_reckoning.stride_calibration.enabled},
       {"matcher.exact_refine_check", &o.matcher.exact_refine_check},
       {"keyframe_by_place", &o.keyframe_by_place},
@@ -103,16 +97,10 @@ void ApplyOdometrySettings(const std::vector<std::string>& settings,
       {"keyframe_stride_jump_share", &o.keyframe_stride_jump_share},
       {"keyframe_stride_jump_across_weak", &o.keyframe_stride_jump_across_weak},
       {"local_map_place_fill_recent", &o.local_map_place_fill_recent}};
-  for (const std::string& setting : settings) {
-    const auto [name, value] = ParseSetting(setting);
-    if (const auto d = doubles.find(name); d != doubles.end()) {
-      *d->second = value;
-    } else if (const auto f = flags.find(name); f != flags.end()) {
-      *f->second = value != 0.0;  // 0: off, anything else: on
-    } else if (const auto i = ints.find(name); i != ints.end()) {
-      *i->second = static_cast<int>(std::lround(value));
-    } else {
-      throw std::runtime_error("--set: unknown option '" + name + "' (see docs/odometry.md)");
+  for (const std::string& text : settings) {
+    const Setting setting = ParseSetting(text);
+    if (!ApplySetting(targets, setting)) {
+      throw std::runtime_error("--set: unknown option '" + setting.name + "' (see docs/odometry.md)");
     }
   }
 }
