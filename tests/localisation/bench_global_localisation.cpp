@@ -80,7 +80,8 @@ struct Trial {
   geometry::Pose2 leader_truth;
 };
 
-// PENA_BENCH_SET=name=value,...: tracker options (and the chain's compass_tolerance_deg) for
+// PENA_BENCH_SET=name=value,...: tracker options (and the chain's compass_tolerance_deg and a few
+// odometry options, prefixed "odometry.") for
 // comparing variants on the same starts.
 void ApplySettings(localisation::LocalisationChainOptions& chain) {
   localisation::GlobalTrackerOptions& o = chain.tracker;
@@ -111,6 +112,12 @@ void ApplySettings(localisation::LocalisationChainOptions& chain) {
     else if (name == "return_fit_keyframes") o.return_fit_keyframes = static_cast<int>(value);
     else if (name == "min_followed_keyframes") o.min_followed_keyframes = static_cast<int>(value);
     else if (name == "compass_tolerance_deg") chain.compass_tolerance_rad = value * kDeg;
+    // The odometry underneath: the people's option set W (docs/odometry.md, twelfth round d4).
+    else if (name == "odometry.max_stride_period_s") chain.odometry.dead_reckoning.max_stride_period_s = value;
+    else if (name == "odometry.keyframe_turn_rate_rad_s") chain.odometry.keyframe_turn_rate_rad_s = value;
+    else if (name == "odometry.keyframe_absorbs_stride_jumps") chain.odometry.keyframe_absorbs_stride_jumps = value != 0.0;
+    else if (name == "odometry.keyframe_stride_jump_share") chain.odometry.keyframe_stride_jump_share = value != 0.0;
+    else if (name == "odometry.keyframe_stride_jump_across_weak") chain.odometry.keyframe_stride_jump_across_weak = value != 0.0;
     else {
       std::fprintf(stderr, "PENA_BENCH_SET: unknown tracker option %s\n", name.c_str());
       std::exit(2);
