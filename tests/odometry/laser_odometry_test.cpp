@@ -235,7 +235,7 @@ TEST(LaserOdometry, DropsWalkerFixedReturnsForPeopleOnly) {
   EXPECT_EQ(Replay(Entity("ff1")).counts.walker_fixed_dropped, 0);
   // Its thresholds are checked even when it is off.
   LaserOdometryOptions bad;
-  bad.walker_fixed_points_static_m = 0.0;
+  bad.walker_fixed_points.static_m = 0.0;
   EXPECT_THROW(LaserOdometry(bad, sensors::EntityKind::kHuman, {}, 0.0), std::invalid_argument);
 }
 

@@ -28,19 +28,6 @@ inline PlaceChoice PlaceChoiceOf(const LaserOdometryOptions& o) {
           o.local_map_place_fill_recent};
 }
 
-inline WalkerFixedPointsOptions WalkerFixedPointsOf(const LaserOdometryOptions& o) {
-  WalkerFixedPointsOptions options;
-  options.min_forward_m = o.walker_fixed_points_min_forward_m;
-  options.body_along_m = o.walker_fixed_points_body_along_m;
-  options.body_across_m = o.walker_fixed_points_body_across_m;
-  options.static_m = o.walker_fixed_points_static_m;
-  options.static_per_range_m = o.walker_fixed_points_static_per_range_m;
-  options.outline_max_gap_m = o.walker_fixed_points_outline_max_gap_m;
-  options.max_turn_rad = o.walker_fixed_points_max_turn_rad;
-  options.min_run_points = o.walker_fixed_points_min_run_points;
-  options.max_fraction = o.walker_fixed_points_max_fraction;
-  return options;
-}
 
 }  // namespace internal
 
@@ -68,7 +55,7 @@ struct LaserOdometry::Impl {
         frozen_odometry(  // robots' wheel odometry only
             mode == MotionPrior::kOdometry ? checked.frozen_odometry_min_turn_rad : 0.0,
             mode == MotionPrior::kOdometry ? checked.frozen_odometry_min_move_m : 0.0),
-        walker_fixed(internal::WalkerFixedPointsOf(checked)),  // checked even when off
+        walker_fixed(checked.walker_fixed_points),  // checked even when off
         drop_walker_fixed(checked.drop_walker_fixed_points && mode == MotionPrior::kDeadReckoning) {}
 
   LaserOdometryOptions options;

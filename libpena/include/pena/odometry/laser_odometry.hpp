@@ -9,6 +9,7 @@
 
 #include "pena/dead_reckoning/human_dead_reckoning.hpp"
 #include "pena/geometry/pose2.hpp"
+#include "pena/odometry/walker_fixed_points_options.hpp"
 #include "pena/scan_matching/correlation_scan_matcher.hpp"
 #include "pena/sensors/entity.hpp"
 #include "pena/sensors/record.hpp"
@@ -146,28 +147,14 @@ struct LaserOdometryOptions {
   // docs/odometry.md, twelfth round d5). Off by default.
   bool degenerate_slide_backward_only = false;
   // People only (dead reckoning): returns that move with the body are dropped from the scan before
-  // it is matched or made a keyframe (odometry::internal::WalkerFixedPoints): a return near one of
-  // the previous scan's in the laser frame (within walker_fixed_points_body_along_m along its x
-  // axis, _body_across_m across) but farther than _static_m from the outline of the previous scan
-  // moved by the dead reckoning's motion between the two scans (its stride jumps taken out). A
-  // bend's floor line across a corridor 4-6 m ahead keeps its distance from the walker and reads
-  // as an end wall that pulls the match back (loop170 seed 8 at 106-109 s, twelfth round d5).
-  // The static tolerance grows by _static_per_range_m per metre (a tilting laser cuts walls a little
-  // elsewhere at every scan); only runs of _min_run_points neighbouring returns are dropped. Only
-  // while the dead reckoning moved at least _min_forward_m along the laser's axis and turned at
-  // most _max_turn_rad since the previous scan, and not when more than _max_fraction of the scan
-  // would go (a stop the prior has not seen yet). Off by default (docs/odometry.md, thirteenth
-  // round).
+  // it is matched or made a keyframe (odometry::internal::WalkerFixedPoints): a return near where
+  // one of the previous scan's was in the laser frame, but not near the previous scan moved by the
+  // dead reckoning's motion between the two scans (thresholds in walker_fixed_points). A bend's
+  // floor line across a corridor 4-6 m ahead keeps its distance from the walker and reads as an
+  // end wall that pulls the match back (loop170 seed 8 at 106-109 s, twelfth round d5). Off by
+  // default: measured worse (docs/odometry.md, thirteenth round).
   bool drop_walker_fixed_points = false;
-  double walker_fixed_points_min_forward_m = 0.15;
-  double walker_fixed_points_body_along_m = 1.5;
-  double walker_fixed_points_body_across_m = 0.15;
-  double walker_fixed_points_static_m = 0.12;
-  double walker_fixed_points_static_per_range_m = 0.02;
-  double walker_fixed_points_outline_max_gap_m = 0.5;
-  double walker_fixed_points_max_turn_rad = 0.1;
-  int walker_fixed_points_min_run_points = 5;
-  double walker_fixed_points_max_fraction = 0.25;
+  WalkerFixedPointsOptions walker_fixed_points;  // its thresholds (checked even when off)
   // Prior-consistency gate (people and robots with a motion sensor): a match that moved the
   // pose farther from the motion prior than the sensor can be wrong by is not trusted at once:
   // the scan is not made a keyframe (a stale or aliased scan must not anchor the next priors). The allowance grows with the motion since the latest keyframe. After
