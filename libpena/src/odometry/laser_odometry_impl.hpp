@@ -28,7 +28,6 @@ inline PlaceChoice PlaceChoiceOf(const LaserOdometryOptions& o) {
           o.local_map_place_fill_recent};
 }
 
-
 }  // namespace internal
 
 struct LaserOdometry::Impl {
