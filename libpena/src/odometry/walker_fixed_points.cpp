@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "pena/geometry/segment2.hpp"
 #include "pena/options_check.hpp"
 
 namespace pena::odometry::internal {
@@ -11,14 +12,6 @@ namespace {
 
 void Require(bool ok, const char* field, const char* rule, double value) {
   RequireOption(ok, "walker_fixed_points", field, rule, value);
-}
-
-double SegmentDistanceM(const Eigen::Vector2d& point, const Eigen::Vector2d& a,
-                        const Eigen::Vector2d& b) {
-  const Eigen::Vector2d along = b - a;
-  const double length2 = along.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((point - a).dot(along) / length2, 0.0, 1.0) : 0.0;
-  return (point - (a + t * along)).norm();
 }
 
 double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -46,7 +39,7 @@ bool NearOutline(const Eigen::Vector2d& point, const scan_matching::Points2& out
     const Eigen::Vector2d& a = outline[i];
     const Eigen::Vector2d& b = outline[i + 1];
     if (((b - a).norm() <= max_gap_m || BetweenBearings(point, a, b)) &&
-        SegmentDistanceM(point, a, b) <= tolerance_m) {
+        geometry::DistanceToSegment({a, b}, point) <= tolerance_m) {
       return true;
     }
   }
