@@ -112,6 +112,8 @@ void ApplySettings(localisation::LocalisationChainOptions& chain) {
     else if (name == "return_fit_keyframes") o.return_fit_keyframes = static_cast<int>(value);
     else if (name == "min_followed_keyframes") o.min_followed_keyframes = static_cast<int>(value);
     else if (name == "compass_tolerance_deg") chain.compass_tolerance_rad = value * kDeg;
+    // The whole-plan localiser underneath (beam agreement, docs/localisation.md).
+    else if (name == "agreement_tolerance_m") chain.global.agreement_tolerance_m = value;
     // The odometry underneath: the people's option set W (docs/odometry.md, twelfth round d4).
     else if (name == "odometry.max_stride_period_s") chain.odometry.dead_reckoning.max_stride_period_s = value;
     else if (name == "odometry.keyframe_turn_rate_rad_s") chain.odometry.keyframe_turn_rate_rad_s = value;

@@ -99,6 +99,32 @@ TEST(GlobalLocaliser, HeadingBoundKeepsTheCorridorTheRightWayRound) {
   }
 }
 
+// A room whose north wall the plan draws 0.4 m off (a rough plan's shifted wall, as in front of
+// office's archive): the beams near the wall's normal agree with the default 0.5 m tolerance,
+// whichever side the plan draws it, and none of that wall's beams do with 0.3 m.
+TEST(GlobalLocaliser, BeamAgreementTakesInAWallThePlanDrawsOff) {
+  const auto room = [](double north_y_m) {
+    return std::vector<geometry::Segment2>{{{0.0, 0.0}, {6.0, 0.0}}, {{6.0, 0.0}, {6.0, north_y_m}},
+                                           {{6.0, north_y_m}, {0.0, north_y_m}}, {{0.0, north_y_m}, {0.0, 0.0}}};
+  };
+  const geometry::Pose2 pose{3.0, 2.0, 90.0 * kDeg};  // facing the north wall, 2 m away
+  const auto scan = VirtualScanner(room(4.0)).Scan(pose, testing::OfficeLaser(), 361);
+  GlobalLocaliserOptions strict;
+  strict.agreement_tolerance_m = 0.3;
+  for (const double north_y_m : {4.4, 3.6}) {
+    const BeamAgreement narrow = GlobalLocaliser(room(north_y_m), strict).Agreement(scan, pose);
+    const BeamAgreement wide = GlobalLocaliser(room(north_y_m)).Agreement(scan, pose);
+    EXPECT_EQ(wide.returns, 361);
+    // The north wall's 225 beams (within 56 deg of its normal) end 0.4 m or more from the plan's
+    // wall but near its corners; with 0.5 m those within 37 deg of its normal agree too.
+    EXPECT_LT(narrow.agree, 150) << north_y_m;
+    EXPECT_GT(wide.agree, narrow.agree + 140) << north_y_m;
+    // Drawn too far south, the others pass the plan's wall.
+    if (north_y_m < 4.0) EXPECT_GT(wide.through, 50);
+    else EXPECT_EQ(wide.through, 0);
+  }
+}
+
 TEST(GlobalLocaliser, EmptyScanGivesNoHypothesis) {
   const GlobalLocaliser localiser({{{0.0, 0.0}, {5.0, 0.0}}});
   EXPECT_TRUE(localiser.Localise(scan_matching::Points2{}).hypotheses.empty());
@@ -111,6 +137,15 @@ TEST(GlobalLocaliserOptions, RejectsBadValues) {
   EXPECT_THROW(GlobalLocaliser({}, options), std::invalid_argument);
   options = {};
   options.coarse_step_xy_m = 0.07;  // not a multiple of the coarse 0.05 m grid
+  EXPECT_THROW(GlobalLocaliser({}, options), std::invalid_argument);
+  options = {};
+  options.agreement_tolerance_m = std::nan("");
+  EXPECT_THROW(GlobalLocaliser({}, options), std::invalid_argument);
+  options = {};
+  options.agreement_tolerance_m = 0.0;
+  EXPECT_THROW(GlobalLocaliser({}, options), std::invalid_argument);
+  options = {};
+  options.min_range_m = options.max_range_m;
   EXPECT_THROW(GlobalLocaliser({}, options), std::invalid_argument);
 }
 

@@ -24,6 +24,9 @@ void Validate(const GlobalLocaliserOptions& o) {
   Require(o.heading_sectors >= 1, "heading_sectors", ">= 1", o.heading_sectors);
   Require(o.refine_candidates >= 1, "refine_candidates", ">= 1", o.refine_candidates);
   Require(o.max_range_m > 0.0, "max_range_m", "> 0 m", o.max_range_m);
+  Require(o.min_range_m >= 0.0 && o.min_range_m < o.max_range_m, "min_range_m", ">= 0 m and < max_range_m",
+          o.min_range_m);
+  Require(o.agreement_tolerance_m > 0.0, "agreement_tolerance_m", "> 0 m", o.agreement_tolerance_m);
   Require(o.coarse_step_theta_rad > 0.0, "coarse_step_theta_rad", "> 0 rad", o.coarse_step_theta_rad);
   scan_matching::ValidateWindow({o.tile_size_m, o.tile_size_m, 2.0 * std::numbers::pi / o.heading_sectors,
                                  o.coarse_step_xy_m, o.coarse_step_theta_rad},
