@@ -7,8 +7,9 @@
 // first whole-plan search).
 //   bench_global_localisation [POSES=100] [SIM_SEED=1] [PICK_SEED=1]
 // Environment (diagnosis; the figures are unchanged without them): PENA_BENCH_TRACE=1 prints
-// every keyframe's leader and the track at the true pose, PENA_BENCH_ONLY=3,17 runs only those
-// of the picked starts, PENA_BENCH_SET=name=value,... sets tracker options.
+// every keyframe's share of returning beams, its leader and the track at the true pose,
+// PENA_BENCH_ONLY=3,17 runs only those of the picked starts, PENA_BENCH_SET=name=value,... sets
+// tracker options.
 // A start that has walked 30 m without anchoring is answered by the leader then, as one whose
 // log ends first; the count of starts the log leaves less than 1 m / 3 m of walk after is printed.
 #include <algorithm>
@@ -111,6 +112,7 @@ void ApplySettings(localisation::LocalisationChainOptions& chain) {
     else if (name == "answer_on_plan") o.answer_on_plan = value != 0.0;
     else if (name == "return_fit_keyframes") o.return_fit_keyframes = static_cast<int>(value);
     else if (name == "min_followed_keyframes") o.min_followed_keyframes = static_cast<int>(value);
+    else if (name == "min_decide_return_fraction") o.min_decide_return_fraction = value;
     else if (name == "compass_tolerance_deg") chain.compass_tolerance_rad = value * kDeg;
     // The whole-plan localiser underneath (beam agreement, docs/localisation.md).
     else if (name == "agreement_tolerance_m") chain.global.agreement_tolerance_m = value;
@@ -179,7 +181,11 @@ Trial Run(const sim::EntityRecording& entity, const std::vector<geometry::Segmen
     first_scan = false;
     if (pose->global && !pose->global->hypotheses.empty()) {
       trial.leader = pose->global->hypotheses.front().map_from_body, trial.leader_truth = truth;
-      if (trace) Trace(*pose->global, truth, trial.walked_m);
+      if (trace) {
+        const auto& scan = std::get<sensors::LaserScan>(entity.records[i]);
+        std::printf("  returns %.2f", static_cast<double>(scan.CountReturns()) / static_cast<double>(scan.ranges_m.size()));
+        Trace(*pose->global, truth, trial.walked_m);
+      }
     }
     if (!pose->anchored) continue;
     trial.anchored = true;

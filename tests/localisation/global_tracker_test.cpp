@@ -215,6 +215,43 @@ TEST(GlobalTracker, DecidesOnlyAPlaceFollowedOverEnoughKeyframes) {
   EXPECT_LT(error_later_m, 0.1);
 }
 
+// The same walk with the first keyframes seeing little (two beams in five return, as in smoke):
+// with the default min_decide_return_fraction (0.5) nothing is decided on them, without it the
+// tracker decides while they last.
+TEST(GlobalTracker, DecidesNothingOnAScanThatSeesLittle) {
+  const sim::Scenario office = testing::OfficeScenario();
+  const VirtualScanner truth_scanner(office.walls);
+  const GlobalLocaliser localiser(*office.apriori);
+  const geometry::Pose2 odom_from_map{3.0, -7.0, 10.0 * kDeg};
+  constexpr int kThinKeyframes = 30;
+  const auto first_decision = [&](const GlobalTrackerOptions& options) {
+    GlobalTracker tracker(localiser, options);
+    for (int step = 0; step < 40; ++step) {
+      const geometry::Pose2 truth{40.5 - 0.5 * step, 14.0, 180.0 * kDeg};
+      sensors::LaserScan scan = truth_scanner.Scan(truth, testing::OfficeLaser(), 361);
+      if (step < kThinKeyframes) {
+        for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+          if (i % 5 >= 2) scan.ranges_m[i] = sensors::LaserScan::kNoReturn;
+        }
+      }
+      const auto decided = tracker.Update(scan, geometry::Compose(odom_from_map, truth)).decided;
+      if (decided) {
+        return std::make_pair(step + 1, std::hypot(decided->map_from_body.x_m - truth.x_m,
+                                                   decided->map_from_body.y_m - truth.y_m));
+      }
+    }
+    return std::make_pair(0, 0.0);
+  };
+  GlobalTrackerOptions options;
+  const auto [at_default, error_default_m] = first_decision(options);
+  EXPECT_EQ(at_default, kThinKeyframes + 1);
+  EXPECT_LT(error_default_m, 0.1);
+  options.min_decide_return_fraction = 0.0;
+  const auto [at_any, error_any_m] = first_decision(options);
+  EXPECT_GT(at_any, 0);
+  EXPECT_LE(at_any, kThinKeyframes);
+}
+
 TEST(GlobalTrackerOptions, RejectsBadValues) {
   const GlobalLocaliser localiser({{{0.0, 0.0}, {5.0, 0.0}}});
   GlobalTrackerOptions options;
@@ -228,6 +265,11 @@ TEST(GlobalTrackerOptions, RejectsBadValues) {
   EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
   options = {};
   options.odom_heading_tolerance_rad = -0.1;
+  EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
+  options = {};
+  options.min_decide_return_fraction = 1.5;
+  EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
+  options.min_decide_return_fraction = std::nan("");
   EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
   options = {};
   options.freeze_history_keyframes = -1;

@@ -51,8 +51,9 @@ geometry::Pose2 ParsePose(const std::string& text, const std::string& option) {
 // prefixed "odometry.", to the odometry underneath (the names of `pena odometry --set`), and
 // global.compass_tolerance_deg (LocalisationChainOptions::compass_tolerance_rad, in degrees),
 // global.freeze_history_keyframes, global.boundary_fraction, global.freeze_ranking,
-// global.answer_on_plan (0/1), global.return_fit_keyframes and global.min_followed_keyframes
-// (GlobalTrackerOptions), global.agreement_tolerance_m (GlobalLocaliserOptions) and
+// global.answer_on_plan (0/1), global.return_fit_keyframes, global.min_followed_keyframes and
+// global.min_decide_return_fraction (GlobalTrackerOptions), global.agreement_tolerance_m
+// (GlobalLocaliserOptions) and
 // relocalise_after_rounds (LocalisationChainOptions, plan rounds; 0 = off);
 // integer options are rounded; unknown names are errors. The options are validated by
 // MapLocaliser's constructor as usual.
@@ -75,7 +76,8 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                      {"along_search_step_m", &o.along_search_step_m},
                      {"matcher.threshold_m", &o.matcher.threshold_m},
                      {"global.boundary_fraction", &chain.tracker.boundary_fraction},
-                     {"global.agreement_tolerance_m", &chain.global.agreement_tolerance_m}};
+                     {"global.agreement_tolerance_m", &chain.global.agreement_tolerance_m},
+                     {"global.min_decide_return_fraction", &chain.tracker.min_decide_return_fraction}};
   targets.ints = {{"min_hits", &o.min_hits},
                   {"outside_after_failures", &o.outside_after_failures},
                   {"oversample", &o.oversample},

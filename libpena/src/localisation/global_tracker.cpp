@@ -34,6 +34,8 @@ void Validate(const GlobalTrackerOptions& o) {
   Require(o.freeze_ranking >= 0 && o.freeze_ranking <= 2, "freeze_ranking", "in [0, 2]", o.freeze_ranking);
   Require(o.return_fit_keyframes >= 0, "return_fit_keyframes", ">= 0", o.return_fit_keyframes);
   Require(o.min_followed_keyframes >= 0, "min_followed_keyframes", ">= 0", o.min_followed_keyframes);
+  Require(o.min_decide_return_fraction >= 0.0 && o.min_decide_return_fraction <= 1.0, "min_decide_return_fraction",
+          "in [0, 1]", o.min_decide_return_fraction);
   Require(o.odom_heading_tolerance_rad >= 0.0, "odom_heading_tolerance_rad", ">= 0 rad",
           o.odom_heading_tolerance_rad);
 }
@@ -311,7 +313,9 @@ TrackerUpdate GlobalTracker::Update(const sensors::LaserScan& scan, const geomet
   }
   Score();
   Prune();
-  update.decided = Decide();
+  const bool sees_enough = static_cast<double>(scan.CountReturns()) >=
+                           options_.min_decide_return_fraction * static_cast<double>(scan.ranges_m.size());
+  if (sees_enough) update.decided = Decide();
   update.ranked = Ranked();
   return update;
 }
