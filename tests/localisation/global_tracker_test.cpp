@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "office_plan.hpp"
@@ -13,6 +15,29 @@ namespace pena::localisation {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
+
+// A plain walk west along office's corridor (perfect scans of the true walls, 0.5 m a keyframe,
+// 40 keyframes): the first keyframe (1-based) at which a tracker with `options` decides (0: none)
+// and the decision's distance from the true pose. `thin` may blank beams of a keyframe's scan.
+std::pair<int, double> FirstCorridorDecision(
+    const GlobalTrackerOptions& options,
+    const std::function<void(int step, sensors::LaserScan&)>& thin = [](int, sensors::LaserScan&) {}) {
+  const sim::Scenario office = testing::OfficeScenario();
+  const VirtualScanner truth_scanner(office.walls);
+  const GlobalLocaliser localiser(*office.apriori);
+  const geometry::Pose2 odom_from_map{3.0, -7.0, 10.0 * kDeg};
+  GlobalTracker tracker(localiser, options);
+  for (int step = 0; step < 40; ++step) {
+    const geometry::Pose2 truth{40.5 - 0.5 * step, 14.0, 180.0 * kDeg};
+    sensors::LaserScan scan = truth_scanner.Scan(truth, testing::OfficeLaser(), 361);
+    thin(step, scan);
+    const auto decided = tracker.Update(scan, geometry::Compose(odom_from_map, truth)).decided;
+    if (decided) {
+      return {step + 1, std::hypot(decided->map_from_body.x_m - truth.x_m, decided->map_from_body.y_m - truth.y_m)};
+    }
+  }
+  return {0, 0.0};
+}
 
 // Walks west from the entrance (0.5 m steps, perfect scans of the true walls, the odometry frame
 // an arbitrary placement of the plan frame) until `tracker` decides, and checks it decided the
@@ -184,31 +209,11 @@ TEST(GlobalTracker, HeadingToleranceKeepsEveryTrackWithinIt) {
 // defaults decide at some keyframe; asking for 3 more followed keyframes than that decides no
 // earlier, and still on the true pose.
 TEST(GlobalTracker, DecidesOnlyAPlaceFollowedOverEnoughKeyframes) {
-  const sim::Scenario office = testing::OfficeScenario();
-  const VirtualScanner truth_scanner(office.walls);
-  const GlobalLocaliser localiser(*office.apriori);
-  const geometry::Pose2 odom_from_map{3.0, -7.0, 10.0 * kDeg};
-  // The first keyframe (1-based) at which a tracker with `options` decides (0: none), and the
-  // decision's distance from the true pose.
-  const auto first_decision = [&](const GlobalTrackerOptions& options) {
-    GlobalTracker tracker(localiser, options);
-    for (int step = 0; step < 40; ++step) {
-      const geometry::Pose2 truth{40.5 - 0.5 * step, 14.0, 180.0 * kDeg};
-      const auto decided =
-          tracker.Update(truth_scanner.Scan(truth, testing::OfficeLaser(), 361), geometry::Compose(odom_from_map, truth))
-              .decided;
-      if (decided) {
-        return std::make_pair(step + 1, std::hypot(decided->map_from_body.x_m - truth.x_m,
-                                                   decided->map_from_body.y_m - truth.y_m));
-      }
-    }
-    return std::make_pair(0, 0.0);
-  };
   GlobalTrackerOptions options;
-  const auto [at_default, error_default_m] = first_decision(options);
+  const auto [at_default, error_default_m] = FirstCorridorDecision(options);
   ASSERT_GT(at_default, 0);
   options.min_followed_keyframes = at_default + 3;
-  const auto [at_later, error_later_m] = first_decision(options);
+  const auto [at_later, error_later_m] = FirstCorridorDecision(options);
   ASSERT_GT(at_later, 0) << "default decided at " << at_default;
   EXPECT_GT(at_later, at_default + 3);
   EXPECT_LT(error_default_m, 0.1);
@@ -219,35 +224,19 @@ TEST(GlobalTracker, DecidesOnlyAPlaceFollowedOverEnoughKeyframes) {
 // with the default min_decide_return_fraction (0.5) nothing is decided on them, without it the
 // tracker decides while they last.
 TEST(GlobalTracker, DecidesNothingOnAScanThatSeesLittle) {
-  const sim::Scenario office = testing::OfficeScenario();
-  const VirtualScanner truth_scanner(office.walls);
-  const GlobalLocaliser localiser(*office.apriori);
-  const geometry::Pose2 odom_from_map{3.0, -7.0, 10.0 * kDeg};
   constexpr int kThinKeyframes = 30;
-  const auto first_decision = [&](const GlobalTrackerOptions& options) {
-    GlobalTracker tracker(localiser, options);
-    for (int step = 0; step < 40; ++step) {
-      const geometry::Pose2 truth{40.5 - 0.5 * step, 14.0, 180.0 * kDeg};
-      sensors::LaserScan scan = truth_scanner.Scan(truth, testing::OfficeLaser(), 361);
-      if (step < kThinKeyframes) {
-        for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
-          if (i % 5 >= 2) scan.ranges_m[i] = sensors::LaserScan::kNoReturn;
-        }
-      }
-      const auto decided = tracker.Update(scan, geometry::Compose(odom_from_map, truth)).decided;
-      if (decided) {
-        return std::make_pair(step + 1, std::hypot(decided->map_from_body.x_m - truth.x_m,
-                                                   decided->map_from_body.y_m - truth.y_m));
-      }
+  const auto thin = [](int step, sensors::LaserScan& scan) {
+    if (step >= kThinKeyframes) return;
+    for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+      if (i % 5 >= 2) scan.ranges_m[i] = sensors::LaserScan::kNoReturn;
     }
-    return std::make_pair(0, 0.0);
   };
   GlobalTrackerOptions options;
-  const auto [at_default, error_default_m] = first_decision(options);
+  const auto [at_default, error_default_m] = FirstCorridorDecision(options, thin);
   EXPECT_EQ(at_default, kThinKeyframes + 1);
   EXPECT_LT(error_default_m, 0.1);
   options.min_decide_return_fraction = 0.0;
-  const auto [at_any, error_any_m] = first_decision(options);
+  const auto [at_any, error_any_m] = FirstCorridorDecision(options, thin);
   EXPECT_GT(at_any, 0);
   EXPECT_LE(at_any, kThinKeyframes);
 }

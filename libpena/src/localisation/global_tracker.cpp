@@ -216,6 +216,11 @@ std::optional<PoseHypothesis> GlobalTracker::Decide() const {
       travel_m_ < options_.min_travel_m) {
     return std::nullopt;
   }
+  const sensors::LaserScan& latest = keyframes_.back().scan;
+  if (static_cast<double>(latest.CountReturns()) <
+      options_.min_decide_return_fraction * static_cast<double>(latest.ranges_m.size())) {
+    return std::nullopt;  // a scan that sees little fits many places
+  }
   const Track& leader = tracks_.front();
   if (leader.agreement < options_.min_agreement || leader.walks_through_walls ||
       leader.followed_keyframes < options_.min_followed_keyframes) {
@@ -313,9 +318,7 @@ TrackerUpdate GlobalTracker::Update(const sensors::LaserScan& scan, const geomet
   }
   Score();
   Prune();
-  const bool sees_enough = static_cast<double>(scan.CountReturns()) >=
-                           options_.min_decide_return_fraction * static_cast<double>(scan.ranges_m.size());
-  if (sees_enough) update.decided = Decide();
+  update.decided = Decide();
   update.ranked = Ranked();
   return update;
 }
