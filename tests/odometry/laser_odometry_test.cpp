@@ -207,6 +207,31 @@ TEST(LaserOdometry, ScanGoingBackInTimeIsIgnored) {
   EXPECT_EQ(odometry.counts().records_ignored, 1);
 }
 
+// A person's dead reckoning starts at the start pose, and a first scan taken later is moved by
+// what it measured since: here a 0.5 rad turn (1 rad/s from the start at 0 s to the first scan at
+// 0.5 s). It was taken as no motion, and the odometry, which takes only increments after that,
+// stayed 0.5 rad off for good (an unknown start waits for the compass, office seed 1 at 97.8 s:
+// 31 deg). A scan at the start stamp is at the start pose.
+TEST(LaserOdometry, ATurnBetweenTheStartAndTheFirstScanIsKept) {
+  sensors::LaserScan scan;
+  scan.geometry = {-std::numbers::pi / 2, std::numbers::pi / 360, 30.0};
+  scan.ranges_m.assign(361, 3.0f);
+  const geometry::Pose2 start{2.0, 1.0, 0.3};
+  LaserOdometry later({}, sensors::EntityKind::kHuman, start, 10.0);
+  for (int tick = 1; tick <= 50; ++tick) later.Add(sensors::GyroSample{10.0 + 0.01 * tick, 1.0});
+  scan.stamp_s = 10.5;
+  const auto turned = later.Add(scan);
+  ASSERT_TRUE(turned.has_value());
+  EXPECT_NEAR(turned->world_from_body.theta_rad, 0.8, 0.01);
+  EXPECT_NEAR(turned->world_from_body.x_m, 2.0, 1e-9);  // no stride: no step
+  LaserOdometry at_start({}, sensors::EntityKind::kHuman, start, 10.0);
+  scan.stamp_s = 10.0;
+  const auto first = at_start.Add(scan);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_DOUBLE_EQ(first->world_from_body.theta_rad, 0.3);
+  EXPECT_DOUBLE_EQ(first->world_from_body.x_m, 2.0);
+}
+
 TEST(LaserOdometry, InvalidOptionNamesField) {
   LaserOdometryOptions options;
   options.min_score = 1.5;

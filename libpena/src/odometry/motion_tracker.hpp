@@ -50,6 +50,8 @@ class MotionTracker {
   MotionPrior mode_;
   dead_reckoning::HumanDeadReckoning dead_reckoning_;
   std::optional<geometry::Pose2> last_odometry_pose_;     // at the previous scan
+  geometry::Pose2 world_from_start_;                      // the dead reckoning's start
+  double start_stamp_s_ = 0.0;
   std::optional<double> heading_sigma_rad_;               // at the previous scan
   Eigen::Vector2d stride_jump_m_ = Eigen::Vector2d::Zero();   // see stride_jump_m()
   Eigen::Vector2d jumps_so_far_m_ = Eigen::Vector2d::Zero();  // the dead reckoning's sum then
