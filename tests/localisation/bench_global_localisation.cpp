@@ -9,7 +9,8 @@
 // Environment (diagnosis; the figures are unchanged without them): PENA_BENCH_TRACE=1 prints
 // every keyframe's share of returning beams, its leader and the track at the true pose,
 // PENA_BENCH_ONLY=3,17 runs only those of the picked starts, PENA_BENCH_SET=name=value,... sets
-// tracker options.
+// tracker options, PENA_BENCH_FIRST_SCAN_ONLY=1 stops each start at its first scan (the first
+// search and the odometry's starting heading).
 // The headline runs each start until it anchors or the log ends (then the leader is the answer);
 // beside it, the same starts cut at 30 m of walk (an unanchored start answered by the leader
 // then), the figure of sessions 10-15. The count of starts the log leaves less than 1 m / 3 m of
@@ -84,6 +85,9 @@ struct Trial {
   // The answer had the walk been cut at kWalkLimit_m: the anchor before it, else the leader then.
   std::optional<Errors> cut;
   bool cut_anchored = false;
+  // The unknown phase's odometry starts at the compass heading (the mission frame's): how far
+  // its heading is off the true one at the first scan it gives.
+  double first_odometry_heading_off_deg = 0.0;
 };
 
 // PENA_BENCH_SET=name=value,...: tracker options (and the chain's compass_tolerance_deg and a few
@@ -119,6 +123,7 @@ void ApplySettings(localisation::LocalisationChainOptions& chain) {
     else if (name == "return_fit_keyframes") o.return_fit_keyframes = static_cast<int>(value);
     else if (name == "min_followed_keyframes") o.min_followed_keyframes = static_cast<int>(value);
     else if (name == "min_decide_return_fraction") o.min_decide_return_fraction = value;
+    else if (name == "min_decide_return_keyframes") o.min_decide_return_keyframes = static_cast<int>(value);
     else if (name == "compass_tolerance_deg") chain.compass_tolerance_rad = value * kDeg;
     // The whole-plan localiser underneath (beam agreement, docs/localisation.md).
     else if (name == "agreement_tolerance_m") chain.global.agreement_tolerance_m = value;
@@ -188,7 +193,12 @@ Trial Run(const sim::EntityRecording& entity, const std::vector<geometry::Segmen
       trial.first_found = true;
       trial.first_scan = Compare(pose->global->hypotheses.front().map_from_body, truth);
     }
+    if (first_scan) {
+      trial.first_odometry_heading_off_deg =
+          std::abs(geometry::NormalizeAngle(pose->odometry.world_from_body.theta_rad - truth.theta_rad)) / kDeg;
+    }
     first_scan = false;
+    if (std::getenv("PENA_BENCH_FIRST_SCAN_ONLY")) break;  // diagnosis: the first scan's figures only
     if (pose->global && !pose->global->hypotheses.empty()) {
       trial.leader = pose->global->hypotheses.front().map_from_body, trial.leader_truth = truth;
       if (trace) {
@@ -239,7 +249,8 @@ int main(int argc, char** argv) {
   std::shuffle(starts.begin(), starts.end(), rng);
   starts.resize(std::min<std::size_t>(starts.size(), static_cast<std::size_t>(poses)));
   int good = 0, anchored = 0, first_good = 0, forced = 0, short_1m = 0, short_3m = 0;
-  int cut_good = 0, cut_anchored = 0;
+  int cut_good = 0, cut_anchored = 0, heading_off_10deg = 0;
+  double heading_off_max_deg = 0.0;
   std::vector<double> cpu_s, walked_m, mission_s;
   // PENA_BENCH_ONLY=3,17: run only these of the picked starts (0-based), for diagnosis.
   std::vector<int> only;
@@ -266,6 +277,8 @@ int main(int argc, char** argv) {
     forced += t.forced ? 1 : 0;
     cut_good += t.cut && t.cut->ok() ? 1 : 0;
     cut_anchored += t.cut_anchored ? 1 : 0;
+    heading_off_10deg += t.first_odometry_heading_off_deg > 10.0 ? 1 : 0;
+    heading_off_max_deg = std::max(heading_off_max_deg, t.first_odometry_heading_off_deg);
     cpu_s.push_back(t.cpu_s);
     if (t.anchored) walked_m.push_back(t.walked_m), mission_s.push_back(t.mission_s);
     std::printf("#%zu start %6.2f %6.2f %7.1f deg: %s", index, t.start_truth.x_m, t.start_truth.y_m,
@@ -291,6 +304,8 @@ int main(int argc, char** argv) {
               Median(mission_s), static_cast<unsigned long long>(sim_options.seed), pick_seed);
   std::printf("cut at 30 m of walk: %d / %zu within 0.3 m and 3 deg (%d anchored before it)\n", cut_good,
               starts.size(), cut_anchored);
+  std::printf("starts whose odometry began more than 10 deg off the true heading: %d (at most %.1f deg)\n",
+              heading_off_10deg, heading_off_max_deg);
   std::printf("starts whose log ends within 1 m of walking: %d; within 3 m (min_travel_m): %d\n", short_1m, short_3m);
   return 0;
 }

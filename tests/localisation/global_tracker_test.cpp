@@ -221,8 +221,9 @@ TEST(GlobalTracker, DecidesOnlyAPlaceFollowedOverEnoughKeyframes) {
 }
 
 // The same walk with the first keyframes seeing little (two beams in five return, as in smoke):
-// with the default min_decide_return_fraction (0.5) nothing is decided on them, without it the
-// tracker decides while they last.
+// with the default min_decide_return_fraction (0.5) nothing is decided on them, nor until the
+// latest min_decide_return_keyframes (6) keyframes all see; without the fraction the tracker
+// decides while they last.
 TEST(GlobalTracker, DecidesNothingOnAScanThatSeesLittle) {
   constexpr int kThinKeyframes = 30;
   const auto thin = [](int step, sensors::LaserScan& scan) {
@@ -233,8 +234,12 @@ TEST(GlobalTracker, DecidesNothingOnAScanThatSeesLittle) {
   };
   GlobalTrackerOptions options;
   const auto [at_default, error_default_m] = FirstCorridorDecision(options, thin);
-  EXPECT_EQ(at_default, kThinKeyframes + 1);
+  EXPECT_EQ(at_default, kThinKeyframes + 6);
   EXPECT_LT(error_default_m, 0.1);
+  options.min_decide_return_keyframes = 1;  // the latest keyframe alone (session 15)
+  const auto [at_latest, error_latest_m] = FirstCorridorDecision(options, thin);
+  EXPECT_EQ(at_latest, kThinKeyframes + 1);
+  EXPECT_LT(error_latest_m, 0.1);
   options.min_decide_return_fraction = 0.0;
   const auto [at_any, error_any_m] = FirstCorridorDecision(options, thin);
   EXPECT_GT(at_any, 0);
@@ -259,6 +264,9 @@ TEST(GlobalTrackerOptions, RejectsBadValues) {
   options.min_decide_return_fraction = 1.5;
   EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
   options.min_decide_return_fraction = std::nan("");
+  EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
+  options = {};
+  options.min_decide_return_keyframes = 0;
   EXPECT_THROW(GlobalTracker(localiser, options), std::invalid_argument);
   options = {};
   options.freeze_history_keyframes = -1;

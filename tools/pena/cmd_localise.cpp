@@ -51,8 +51,8 @@ geometry::Pose2 ParsePose(const std::string& text, const std::string& option) {
 // prefixed "odometry.", to the odometry underneath (the names of `pena odometry --set`), and
 // global.compass_tolerance_deg (LocalisationChainOptions::compass_tolerance_rad, in degrees),
 // global.freeze_history_keyframes, global.boundary_fraction, global.freeze_ranking,
-// global.answer_on_plan (0/1), global.return_fit_keyframes, global.min_followed_keyframes and
-// global.min_decide_return_fraction (GlobalTrackerOptions), global.agreement_tolerance_m
+// global.answer_on_plan (0/1), global.return_fit_keyframes, global.min_followed_keyframes,
+// global.min_decide_return_fraction and global.min_decide_return_keyframes (GlobalTrackerOptions), global.agreement_tolerance_m
 // (GlobalLocaliserOptions) and
 // relocalise_after_rounds (LocalisationChainOptions, plan rounds; 0 = off);
 // integer options are rounded; unknown names are errors. The options are validated by
@@ -85,6 +85,7 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                   {"global.freeze_ranking", &chain.tracker.freeze_ranking},
                   {"global.return_fit_keyframes", &chain.tracker.return_fit_keyframes},
                   {"global.min_followed_keyframes", &chain.tracker.min_followed_keyframes},
+                  {"global.min_decide_return_keyframes", &chain.tracker.min_decide_return_keyframes},
                   {"relocalise_after_rounds", &chain.relocalise_after_rounds}};
   targets.flags = {{"global.answer_on_plan", &chain.tracker.answer_on_plan}};
   for (const std::string& text : settings) {

@@ -36,6 +36,7 @@ void Validate(const GlobalTrackerOptions& o) {
   Require(o.min_followed_keyframes >= 0, "min_followed_keyframes", ">= 0", o.min_followed_keyframes);
   Require(o.min_decide_return_fraction >= 0.0 && o.min_decide_return_fraction <= 1.0, "min_decide_return_fraction",
           "in [0, 1]", o.min_decide_return_fraction);
+  Require(o.min_decide_return_keyframes >= 1, "min_decide_return_keyframes", ">= 1", o.min_decide_return_keyframes);
   Require(o.odom_heading_tolerance_rad >= 0.0, "odom_heading_tolerance_rad", ">= 0 rad",
           o.odom_heading_tolerance_rad);
 }
@@ -216,10 +217,13 @@ std::optional<PoseHypothesis> GlobalTracker::Decide() const {
       travel_m_ < options_.min_travel_m) {
     return std::nullopt;
   }
-  const sensors::LaserScan& latest = keyframes_.back().scan;
-  if (static_cast<double>(latest.CountReturns()) <
-      options_.min_decide_return_fraction * static_cast<double>(latest.ranges_m.size())) {
-    return std::nullopt;  // a scan that sees little fits many places
+  const std::size_t seeing = std::min(keyframes_.size(), static_cast<std::size_t>(options_.min_decide_return_keyframes));
+  for (std::size_t i = keyframes_.size() - seeing; i < keyframes_.size(); ++i) {
+    const sensors::LaserScan& scan = keyframes_[i].scan;
+    if (static_cast<double>(scan.CountReturns()) <
+        options_.min_decide_return_fraction * static_cast<double>(scan.ranges_m.size())) {
+      return std::nullopt;  // a scan that sees little fits many places
+    }
   }
   const Track& leader = tracks_.front();
   if (leader.agreement < options_.min_agreement || leader.walks_through_walls ||
