@@ -91,10 +91,11 @@ struct GlobalTrackerOptions {
   // archive (laser range 2.5 m) 20-39 % of the beams return, elsewhere 94-99 %, and five of the
   // ten wrong decisions were taken there, on rooms 6 or 17 m off.
   double min_decide_return_fraction = 0.5;
-  // ... at any of the latest this many keyframes (1: the latest only, session 15). 6 (min_keyframes)
-  // since session 16: walking out of the archive, the decision came at the first keyframe that
-  // saw the corridor again, on evidence from the smoke, and went to a place 6 m along it.
-  int min_decide_return_keyframes = 6;
+  // ... at any of the latest this many keyframes (1: the latest only, session 15). 16
+  // (max_keyframes: the whole evidence window) since session 16: walking out of the archive, the
+  // decision came a few keyframes after the smoke, on evidence gathered in it, and went to a
+  // place 6 m along the corridor (6 keyframes still left five of those).
+  int min_decide_return_keyframes = 16;
 };
 
 // One followed hypothesis.
