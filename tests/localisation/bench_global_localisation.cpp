@@ -168,6 +168,8 @@ void Trace(const localisation::GlobalResult& ranked, const geometry::Pose2& trut
 Trial Run(const sim::EntityRecording& entity, const std::vector<geometry::Segment2>& plan, std::size_t start) {
   Trial trial;
   const bool trace = std::getenv("PENA_BENCH_TRACE") != nullptr;
+  // Diagnosis: the first scan's figures only (the first search, the odometry's starting heading).
+  const bool first_scan_only = std::getenv("PENA_BENCH_FIRST_SCAN_ONLY") != nullptr;
   localisation::LocalisationChainOptions options;
   options.global_start = true;
   ApplySettings(options);
@@ -198,7 +200,7 @@ Trial Run(const sim::EntityRecording& entity, const std::vector<geometry::Segmen
           std::abs(geometry::NormalizeAngle(pose->odometry.world_from_body.theta_rad - truth.theta_rad)) / kDeg;
     }
     first_scan = false;
-    if (std::getenv("PENA_BENCH_FIRST_SCAN_ONLY")) break;  // diagnosis: the first scan's figures only
+    if (first_scan_only) break;
     if (pose->global && !pose->global->hypotheses.empty()) {
       trial.leader = pose->global->hypotheses.front().map_from_body, trial.leader_truth = truth;
       if (trace) {

@@ -52,10 +52,9 @@ geometry::Pose2 ParsePose(const std::string& text, const std::string& option) {
 // global.compass_tolerance_deg (LocalisationChainOptions::compass_tolerance_rad, in degrees),
 // global.freeze_history_keyframes, global.boundary_fraction, global.freeze_ranking,
 // global.answer_on_plan (0/1), global.return_fit_keyframes, global.min_followed_keyframes,
-// global.min_decide_return_fraction and global.min_decide_return_keyframes (GlobalTrackerOptions), global.agreement_tolerance_m
-// (GlobalLocaliserOptions) and
-// relocalise_after_rounds (LocalisationChainOptions, plan rounds; 0 = off);
-// integer options are rounded; unknown names are errors. The options are validated by
+// global.min_decide_return_fraction and global.min_decide_return_keyframes (GlobalTrackerOptions),
+// global.agreement_tolerance_m (GlobalLocaliserOptions) and relocalise_after_rounds
+// (LocalisationChainOptions, plan rounds; 0 = off); integer options are rounded; unknown names are errors. The options are validated by
 // MapLocaliser's constructor as usual.
 void ApplySettings(const std::vector<std::string>& settings, localisation::LocalisationChainOptions& chain) {
   localisation::MapLocaliserOptions& o = chain.map;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -217,13 +218,11 @@ std::optional<PoseHypothesis> GlobalTracker::Decide() const {
       travel_m_ < options_.min_travel_m) {
     return std::nullopt;
   }
-  const std::size_t seeing = std::min(keyframes_.size(), static_cast<std::size_t>(options_.min_decide_return_keyframes));
-  for (std::size_t i = keyframes_.size() - seeing; i < keyframes_.size(); ++i) {
-    const sensors::LaserScan& scan = keyframes_[i].scan;
-    if (static_cast<double>(scan.CountReturns()) <
-        options_.min_decide_return_fraction * static_cast<double>(scan.ranges_m.size())) {
-      return std::nullopt;  // a scan that sees little fits many places
-    }
+  // A scan that sees little fits many places, and so does evidence gathered on it.
+  const std::size_t recent = std::min(keyframes_.size(), static_cast<std::size_t>(options_.min_decide_return_keyframes));
+  if (std::any_of(keyframes_.end() - static_cast<std::ptrdiff_t>(recent), keyframes_.end(),
+                  [](const Keyframe& k) { return k.sees_little; })) {
+    return std::nullopt;
   }
   const Track& leader = tracks_.front();
   if (leader.agreement < options_.min_agreement || leader.walks_through_walls ||
@@ -306,7 +305,9 @@ TrackerUpdate GlobalTracker::Update(const sensors::LaserScan& scan, const geomet
                                                         odom_from_body.y_m - keyframes_.back().odom_from_body.y_m);
   travel_m_ += step_m;
   since_search_m_ += step_m;
-  keyframes_.push_back({scan, odom_from_body});
+  const bool sees_little = static_cast<double>(scan.CountReturns()) <
+                           options_.min_decide_return_fraction * static_cast<double>(scan.ranges_m.size());
+  keyframes_.push_back({scan, odom_from_body, sees_little});
   const int kept = std::max(options_.max_keyframes, options_.freeze_history_keyframes);
   if (keyframes_.size() > static_cast<std::size_t>(kept)) keyframes_.erase(keyframes_.begin());
   // Existing tracks re-fitted at this scan (the odometry carried them here) ...

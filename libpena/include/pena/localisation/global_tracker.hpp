@@ -137,6 +137,7 @@ class GlobalTracker {
   struct Keyframe {
     sensors::LaserScan scan;
     geometry::Pose2 odom_from_body;
+    bool sees_little = false;  // fewer returns than min_decide_return_fraction of the beams
   };
 
   void Search(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body);
