@@ -102,6 +102,7 @@ void WalkStraight(HumanDeadReckoning& dead_reckoning, int strides) {
 // The extrapolation between stride reports switched on (off by default).
 HumanDeadReckoningOptions Carried() {
   HumanDeadReckoningOptions options;
+  options.stride_interpolation.enabled = false;  // extrapolation instead
   options.max_stride_period_s = 1.5;
   return options;
 }
@@ -116,6 +117,12 @@ TEST(HumanDeadReckoning, CarriesThePositionForwardBetweenStrideReports) {
   // The next report replaces the extrapolation: no stride counted twice.
   dead_reckoning.Add(sensors::StrideSample{2.5, 0.5});
   EXPECT_NEAR(dead_reckoning.PriorAt(2.5).world_from_body.x_m, 2.9, 1e-9);
+}
+
+TEST(HumanDeadReckoning, ExtrapolationAndStrideInterpolationExcludeEachOther) {
+  HumanDeadReckoningOptions both;
+  both.max_stride_period_s = 1.5;  // stride_interpolation.enabled by default
+  EXPECT_THROW(HumanDeadReckoning(both, StartAt(0.0, 0.0, 0.0)), std::invalid_argument);
 }
 
 TEST(HumanDeadReckoning, ExtrapolationIsOffByDefaultAndNeedsAKnownPace) {

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "pena/dead_reckoning/stride_interpolator.hpp"
 #include "pena/localisation/localisation_chain.hpp"
 #include "pena/sim/scenario.hpp"
 #include "pena/sim/simulator.hpp"
@@ -129,6 +130,7 @@ void ApplySettings(localisation::LocalisationChainOptions& chain) {
     else if (name == "agreement_tolerance_m") chain.global.agreement_tolerance_m = value;
     // The odometry underneath: the people's option set W (docs/odometry.md, twelfth round d4).
     else if (name == "odometry.max_stride_period_s") chain.odometry.dead_reckoning.max_stride_period_s = value;
+    else if (name == "odometry.stride_interpolation.enabled") chain.odometry.dead_reckoning.stride_interpolation.enabled = value != 0.0;
     else if (name == "odometry.stopped_stride_fraction") chain.odometry.dead_reckoning.stopped_stride_fraction = value;
     else if (name == "odometry.turning_on_the_spot_rad_s") chain.odometry.dead_reckoning.turning_on_the_spot_rad_s = value;
     else if (name == "odometry.overdue_turn_rad") chain.odometry.dead_reckoning.overdue_turn_rad = value;
@@ -180,15 +182,19 @@ Trial Run(const sim::EntityRecording& entity, const std::vector<geometry::Segmen
   geometry::Pose2 truth = first_truth.world_from_body;
   std::optional<geometry::Pose2> previous;
   bool first_scan = true;
-  for (std::size_t i = start; i < entity.records.size(); ++i) {
-    if (const auto* t = std::get_if<sensors::GroundTruth>(&entity.records[i])) {
+  // The stream as the tools take it (pena localise: a person's strides spread over its scans).
+  std::vector<sensors::SensorRecord> records = dead_reckoning::SpreadStrides(
+      {entity.records.begin() + static_cast<std::ptrdiff_t>(start), entity.records.end()},
+      options.odometry.dead_reckoning.stride_interpolation);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (const auto* t = std::get_if<sensors::GroundTruth>(&records[i])) {
       truth = t->world_from_body;
       if (previous) trial.walked_m += std::hypot(truth.x_m - previous->x_m, truth.y_m - previous->y_m);
       previous = truth;
       if (!trial.cut && trial.walked_m >= kWalkLimit_m && trial.leader) trial.cut = Compare(*trial.leader, trial.leader_truth);
       continue;
     }
-    const std::optional<localisation::LocalisedPose> pose = chain.Add(entity.records[i]);
+    const std::optional<localisation::LocalisedPose> pose = chain.Add(records[i]);
     if (!pose) continue;
     trial.searches += pose->global_searched ? 1 : 0;
     if (first_scan && pose->global && !pose->global->hypotheses.empty()) {
@@ -204,7 +210,7 @@ Trial Run(const sim::EntityRecording& entity, const std::vector<geometry::Segmen
     if (pose->global && !pose->global->hypotheses.empty()) {
       trial.leader = pose->global->hypotheses.front().map_from_body, trial.leader_truth = truth;
       if (trace) {
-        const auto& scan = std::get<sensors::LaserScan>(entity.records[i]);
+        const auto& scan = std::get<sensors::LaserScan>(records[i]);
         std::printf("  returns %.2f", static_cast<double>(scan.CountReturns()) / static_cast<double>(scan.ranges_m.size()));
         Trace(*pose->global, truth, trial.walked_m);
       }

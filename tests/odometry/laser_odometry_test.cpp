@@ -161,11 +161,13 @@ waypoint ff1 20 1
   LaserOdometryOptions at_reports;
   at_reports.match_scans = false;  // the default: the position moves at stride reports only
   LaserOdometryOptions prior_only = at_reports;
+  prior_only.dead_reckoning.stride_interpolation.enabled = false;
   prior_only.dead_reckoning.max_stride_period_s = 1.5;  // carried forward between reports
   const double carried_m = AlongTrackJitterM(person, Replay(person, prior_only));
   const double stepped_m = AlongTrackJitterM(person, Replay(person, at_reports));
   EXPECT_LT(carried_m, 0.5 * stepped_m) << "carried " << carried_m << " m, at reports " << stepped_m << " m";
   LaserOdometryOptions matched;
+  matched.dead_reckoning.stride_interpolation.enabled = false;
   matched.dead_reckoning.max_stride_period_s = 1.5;
   LaserOdometryOptions slide = matched;
   slide.degenerate_slide_ratio = 0.2;

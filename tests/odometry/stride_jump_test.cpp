@@ -37,6 +37,7 @@ enum class Absorb { kNone, kWhole, kShare };
 LaserOdometryOptions PriorOnly(Absorb absorb) {
   LaserOdometryOptions options;
   options.match_scans = false;  // the prior alone, anchored at the first scan's keyframe
+  options.dead_reckoning.stride_interpolation.enabled = false;  // extrapolation instead
   options.dead_reckoning.max_stride_period_s = 1.5;
   options.keyframe_absorbs_stride_jumps = absorb != Absorb::kNone;
   options.keyframe_stride_jump_share = absorb == Absorb::kShare;
@@ -122,6 +123,7 @@ TEST(StrideJump, AKeyframeAbsorbsOnlyTheShareOfAJumpThatAccruedBeforeItsStamp) {
 // so it takes 0.4 of the -0.9 m jump, and the prior moves by the remaining -0.54 m.
 TEST(StrideJump, TheShareOfAJumpGrowsWithTheTimeWithinTheCorrectedStride) {
   dead_reckoning::HumanDeadReckoningOptions options;
+  options.stride_interpolation.enabled = false;  // extrapolation instead
   options.max_stride_period_s = 1.5;
   dead_reckoning::HumanDeadReckoning walker(options, {});
   for (int i = 1; i <= 4; ++i) walker.Add(sensors::StrideSample{i * 0.5, 0.6});

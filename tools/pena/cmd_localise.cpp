@@ -17,6 +17,7 @@
 
 #include "cli_support.hpp"
 #include "cmd_localise.hpp"
+#include "spread_source.hpp"
 #include "commands.hpp"
 #include "odometry_settings.hpp"
 #include "pena/io/log_source.hpp"
@@ -208,7 +209,10 @@ void PrintResult(const LocaliseArgs& args, const Run& run, const std::optional<T
 void RunLocalise(const LocaliseArgs& args) {
   const localisation::TrajectorySmootherOptions smoother = SmootherOptions(args.settings);  // names first
   const std::vector<geometry::Segment2> plan = LoadPlan(args);
-  const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
+  localisation::LocalisationChainOptions read_options;  // for the stream's own (stride spreading)
+  ApplySettings(args.settings, read_options);
+  const std::unique_ptr<io::LogSource> source =
+      OpenChainLog(args.log, args.read, read_options.odometry.dead_reckoning);
   const std::filesystem::path out_dir(args.out);
   std::filesystem::create_directories(out_dir);
   const Run run = RunChain(args, *source, plan);

@@ -15,6 +15,7 @@
 
 #include "cli_support.hpp"
 #include "cmd_map.hpp"
+#include "spread_source.hpp"
 #include "commands.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/ros_map.hpp"
@@ -173,7 +174,8 @@ void RunMap(const MapArgs& args) {
   } else if (args.slam) {
     if (auto slam_poses = RunSlamPass(args, run)) trajectory = std::move(*slam_poses);
   }
-  const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
+  const std::unique_ptr<io::LogSource> source =
+      OpenChainLog(args.log, args.read, OdometryOptionsOf(args).dead_reckoning);
   if (!source->description().entity_id.empty()) run.source = source->description().entity_id;
   PoseFeeder(args, trajectory, *source, run).Run();
   if (args.bent_scans != "off" && run.used > 0) {
@@ -185,7 +187,8 @@ void RunMap(const MapArgs& args) {
     run.local.reset();
     run.map = line_map::LineMap(map_options);
     run.extractions = 0;
-    const std::unique_ptr<io::LogSource> again = io::OpenLog(args.log, args.read);
+    const std::unique_ptr<io::LogSource> again =
+        OpenChainLog(args.log, args.read, OdometryOptionsOf(args).dead_reckoning);
     PoseFeeder(args, trajectory, *again, run).Run();
   }
   if (run.used == 0) throw std::runtime_error(args.log + ": no scan could be placed in the grid");

@@ -8,6 +8,7 @@
 #include "cli_support.hpp"
 #include "cmd_map.hpp"
 #include "odometry_settings.hpp"
+#include "spread_source.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/odometry/laser_odometry.hpp"
 
@@ -21,7 +22,8 @@ odometry::LaserOdometryOptions OdometryOptionsOf(const MapArgs& args) {
 
 std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run) {
   const auto started = Clock::now();
-  const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
+  const std::unique_ptr<io::LogSource> source =
+      OpenChainLog(args.log, args.read, OdometryOptionsOf(args).dead_reckoning);
   std::vector<sensors::SensorRecord> read_ahead;
   while (auto record = source->Next()) {
     read_ahead.push_back(std::move(*record));

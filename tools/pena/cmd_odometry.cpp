@@ -22,6 +22,7 @@
 #include "cli_support.hpp"
 #include "commands.hpp"
 #include "odometry_settings.hpp"
+#include "spread_source.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/odometry/laser_odometry.hpp"
@@ -256,7 +257,10 @@ void RunOdometry(const OdometryArgs& args) {
   const auto started = Clock::now();
   std::optional<geometry::Pose2> start_override;
   if (!args.start.empty()) start_override = ParseStart(args.start);
-  const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
+  odometry::LaserOdometryOptions read_options;  // for the stream's own options (stride spreading)
+  ApplyOdometrySettings(args.settings, read_options);
+  const std::unique_ptr<io::LogSource> source =
+      OpenChainLog(args.log, args.read, read_options.dead_reckoning);
   const std::filesystem::path out_dir(args.out);
   std::filesystem::create_directories(out_dir);
   RunResult run = RunChain(*source, args, start_override);

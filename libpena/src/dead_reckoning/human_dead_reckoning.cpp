@@ -42,6 +42,13 @@ HumanDeadReckoning::HumanDeadReckoning(const HumanDeadReckoningOptions& options,
     throw std::invalid_argument("human_dead_reckoning.overdue_turn_rad must be >= 0 rad, got " +
                                 std::to_string(options.overdue_turn_rad));
   }
+  StrideInterpolator::Validate(options.stride_interpolation);
+  if (options.stride_interpolation.enabled && options.max_stride_period_s > 0.0) {
+    throw std::invalid_argument(
+        "human_dead_reckoning.max_stride_period_s (the stride extrapolation) and "
+        "stride_interpolation.enabled exclude each other: set stride_interpolation.enabled=0 to "
+        "extrapolate");
+  }
   if (!(options.max_stride_m > 0.0)) {
     throw std::invalid_argument("human_dead_reckoning.max_stride_m must be > 0 m, got " +
                                 std::to_string(options.max_stride_m));

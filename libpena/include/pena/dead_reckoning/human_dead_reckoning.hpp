@@ -9,6 +9,7 @@
 
 #include "pena/dead_reckoning/heading_filter.hpp"
 #include "pena/dead_reckoning/stride_calibration.hpp"
+#include "pena/dead_reckoning/stride_interpolator.hpp"
 #include "pena/geometry/pose2.hpp"
 #include "pena/sensors/record.hpp"
 
@@ -49,6 +50,11 @@ struct HumanDeadReckoningOptions {
   double overdue_turn_rad = 0.0;
   // The stride scale learnt from position fixes (AddPositionFix), applied to every stride.
   StrideCalibrationOptions stride_calibration;
+  // Each stride spread over the scans taken during it, by the record stream in front of the
+  // dead reckoning (StrideInterpolator; the offline tools apply it, pena-entity does not yet):
+  // this model then receives the pieces as strides. On by default; it replaces the
+  // extrapolation above, so the two exclude each other.
+  StrideInterpolationOptions stride_interpolation;
 };
 
 // A pose estimate with its covariance (x_m, y_m, theta_rad), mission frame.

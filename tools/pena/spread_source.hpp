@@ -1,0 +1,19 @@
+#pragma once
+// The log as the per-entity chain takes it: a person's strides spread over the scans taken
+// during them (dead_reckoning::StrideInterpolator, docs/dead-reckoning.md); other logs as read.
+
+#include <filesystem>
+#include <memory>
+
+#include "pena/dead_reckoning/human_dead_reckoning.hpp"
+#include "pena/io/log_source.hpp"
+
+namespace pena::cli {
+
+// Opens the log (io::OpenLog) and, for a human entity with stride_interpolation enabled, spreads
+// its strides. Records are held until the report that ends their stride (at most max_hold_s).
+std::unique_ptr<io::LogSource> OpenChainLog(
+    const std::filesystem::path& path, const io::ReadOptions& read,
+    const dead_reckoning::HumanDeadReckoningOptions& options);
+
+}  // namespace pena::cli
