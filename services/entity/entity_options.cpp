@@ -1,5 +1,6 @@
 #include "entity_options.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "config_loader.hpp"
@@ -18,6 +19,16 @@ odometry::MotionPrior ParseMotionPrior(const std::string& text) {
                               "odometry or none, got '" + text + "'");
 }
 
+}  // namespace
+
+pipeline::EntityPipelineOptions ServicePipelineDefaults() {
+  pipeline::EntityPipelineOptions options;
+  options.odometry.dead_reckoning.stride_interpolation.enabled = false;
+  return options;
+}
+
+namespace {
+
 void ApplyPipeline(const config::PipelineConfig& config, pipeline::EntityPipelineOptions& out) {
   if (config.has_motion_prior()) out.odometry.motion_prior = ParseMotionPrior(config.motion_prior());
   if (config.has_match_scans()) out.odometry.match_scans = config.match_scans();
@@ -29,6 +40,9 @@ void ApplyPipeline(const config::PipelineConfig& config, pipeline::EntityPipelin
   if (config.has_min_correction_confidence()) {
     out.min_correction_confidence = config.min_correction_confidence();
   }
+  dead_reckoning::StrideInterpolationOptions& spread = out.odometry.dead_reckoning.stride_interpolation;
+  if (config.has_spread_strides()) spread.enabled = config.spread_strides();
+  if (config.has_stride_hold_s()) spread.max_hold_s = config.stride_hold_s();
 }
 
 DdsOptions DdsFromConfig(const config::DdsConfig& config, const std::filesystem::path& path) {
@@ -124,6 +138,9 @@ void ValidateEntityOptions(const EntityServiceOptions& options) {
               "with an unknown start in its own frame (the fusion places it; drop one of them)");
   require(options.record ? !options.output_dir.empty() : true,
           "record needs output_dir (the recording goes to output_dir/recording)");
+  const double hold_s = options.pipeline.odometry.dead_reckoning.stride_interpolation.max_hold_s;
+  require(hold_s > 0.0 && std::isfinite(hold_s),
+          "pipeline.stride_hold_s must be > 0 s (sensor seconds), got " + std::to_string(hold_s));
   pipeline::ValidateEntityPipelineOptions(options.pipeline);
 }
 

@@ -112,6 +112,12 @@ void EntityService::ReadAhead() {
   pipeline_.emplace(options_.pipeline, kind_, entity_id_, StartFrame(start.world_from_body),
                     sensors::StampOf(read_ahead_.front()));
   summary_.entity_id = entity_id_;
+  const dead_reckoning::HumanDeadReckoningOptions& walking = options_.pipeline.odometry.dead_reckoning;
+  if (kind_ == sensors::EntityKind::kHuman && walking.stride_interpolation.enabled) {
+    dead_reckoning::StrideInterpolationOptions spread = walking.stride_interpolation;
+    spread.max_stride_m = walking.max_stride_m;  // the faults the dead reckoning rejects
+    spread_.emplace(spread);
+  }
   if (!options_.plan.empty()) LoadPlan();
   spdlog::info("{}: {} ({}), {} log, start pose from {} ({:.3f}, {:.3f}, {:.3f})", entity_id_,
                options_.input.string(), sensors::ToString(kind_), description.format,
@@ -174,10 +180,18 @@ EntityRunSummary EntityService::Run() {
     } else {
       DrainInbox(0);
     }
-    Feed(*record);
+    Take(*record);
     HeartbeatIfDue();
   }
   if (live_source_) live_source_->SetWaitHook({});
+  if (spread_) {
+    // What is still held was accepted: it goes through, stop or not.
+    spread_->Finish();
+    while (std::optional<sensors::SensorRecord> held = spread_->Pop()) Feed(*held);
+    spdlog::info("{}: {} strides spread over {} scans, {} records released by the hold",
+                 entity_id_, spread_->counts().strides_spread, spread_->counts().pieces,
+                 spread_->counts().released_unspread);
+  }
   summary_.interrupted = StopRequested();
   Finish();
   return summary_;
@@ -197,9 +211,10 @@ void EntityService::DrainInbox(std::int64_t until_ns) {
   }
 }
 
-void EntityService::Feed(const sensors::SensorRecord& record) {
+void EntityService::Take(const sensors::SensorRecord& record) {
   ++summary_.records;
   if (recorder_) {
+    // The input as it came: a replay of the recording spreads its strides again.
     try {
       recorder_->Sensor(record);
     } catch (const std::invalid_argument& error) {
@@ -207,6 +222,12 @@ void EntityService::Feed(const sensors::SensorRecord& record) {
       spdlog::warn("{}: record {} not recorded: {}", entity_id_, summary_.records, error.what());
     }
   }
+  if (!spread_) return Feed(record);
+  spread_->Push(record);
+  while (std::optional<sensors::SensorRecord> ready = spread_->Pop()) Feed(*ready);
+}
+
+void EntityService::Feed(const sensors::SensorRecord& record) {
   std::optional<pipeline::ScanStep> step = pipeline_->Add(record);
   if (!step) return;
   if (options_.start_unknown) ToPlacedFrame(*step);

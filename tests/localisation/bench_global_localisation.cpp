@@ -14,7 +14,8 @@
 // The headline runs each start until it anchors or the log ends (then the leader is the answer);
 // beside it, the same starts cut at 30 m of walk (an unanchored start answered by the leader
 // then), the figure of sessions 10-15. The count of starts the log leaves less than 1 m / 3 m of
-// walk after is printed.
+// walk after is printed. The log goes in as `pena localise` takes it: a person's strides spread
+// over the scans inside them (PENA_BENCH_SET=odometry.stride_interpolation.enabled=0: as logged).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -79,5 +79,21 @@ TEST(ConfigLoader, BadValuesAreNamed) {
   EXPECT_THROW(LoadTextConfig<config::EntityConfig>("/nonexistent/entity.conf"), io::InputError);
 }
 
+TEST(ConfigLoader, StrideSpreadingIsOffByDefaultAndItsHoldIsChecked) {
+  const auto path = Write("spread.conf", "input: \"x\"\n");
+  EntityServiceOptions options =
+      EntityOptionsFromConfig(LoadTextConfig<config::EntityConfig>(path), path);
+  EXPECT_FALSE(options.pipeline.odometry.dead_reckoning.stride_interpolation.enabled);
+  const auto on = Write("on.conf", "input: \"x\"\npipeline { spread_strides: true stride_hold_s: 0 }\n");
+  options = EntityOptionsFromConfig(LoadTextConfig<config::EntityConfig>(on), on);
+  EXPECT_TRUE(options.pipeline.odometry.dead_reckoning.stride_interpolation.enabled);
+  try {
+    ValidateEntityOptions(options);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("pipeline.stride_hold_s"), std::string::npos) << error.what();
+  }
+}
+
 }  // namespace
 }  // namespace pena::services
