@@ -12,7 +12,9 @@
 # compare with the filtered corrections), PENA_DEMO_LOCKSTEP (1: fusion and entities in lockstep,
 # so the corrections and the map do not depend on the machine's load; 0: free-running, as a real
 # deployment; off by itself with --no-corrections, where there is no answer to wait for),
-# PENA_DEMO_CORRECTION_INTERVAL (2.4: mission seconds between correction attempts per entity).
+# PENA_DEMO_CORRECTION_INTERVAL (2.4: mission seconds between correction attempts per entity),
+# PENA_ENTITY_CONFIG (an EntityConfig file every pena-entity reads first; its command line wins,
+# e.g. `pipeline { spread_strides: true }`, docs/services.md).
 # Every process started here is stopped on exit (normal, error, Ctrl-C); nothing is left running.
 set -euo pipefail
 
@@ -102,6 +104,7 @@ if ((LOCKSTEP)); then
   FUSION_ARGS=(--lockstep --lockstep-entities "$TEAM")
   ENTITY_ARGS=(--await-corrections "$INTERVAL")
 fi
+if [[ -n ${PENA_ENTITY_CONFIG:-} ]]; then ENTITY_ARGS+=(--config "$(realpath "$PENA_ENTITY_CONFIG")"); fi
 echo "== pena-fusion (DDS domain $DOMAIN, loopback only$( ((LOCKSTEP)) && echo ", lockstep"))"
 # shellcheck disable=SC2086  # PENA_FUSION_ARGS is a list of options
 "$FUSION_BIN" --config "$OUT/fusion.conf" "${FUSION_ARGS[@]}" ${PENA_FUSION_ARGS:-} \
