@@ -11,8 +11,8 @@
 # --out DIR/office6`, then pass "DIR/office6/ff1" in --entities. One job at a time (2-20 s each).
 # Prints "mission/entity rmse_m final_% heading_deg" rows, then "mean ..." and "over1% N of M";
 # runs are kept in WORK/TAG/<mission>-<entity>. Example, the eleventh round's option set A:
-#   scripts/people-odometry-sweep.sh --tag A -- --set dead_reckoning.max_stride_period_s=1.5 \
-#       --set keyframe_turn_rate_rad_s=0.5236
+#   scripts/people-odometry-sweep.sh --tag A -- --set dead_reckoning.stride_interpolation.enabled=0 \
+#       --set dead_reckoning.max_stride_period_s=1.5 --set keyframe_turn_rate_rad_s=0.5236
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

@@ -114,9 +114,7 @@ void EntityService::ReadAhead() {
   summary_.entity_id = entity_id_;
   const dead_reckoning::HumanDeadReckoningOptions& walking = options_.pipeline.odometry.dead_reckoning;
   if (kind_ == sensors::EntityKind::kHuman && walking.stride_interpolation.enabled) {
-    dead_reckoning::StrideInterpolationOptions spread = walking.stride_interpolation;
-    spread.max_stride_m = walking.max_stride_m;  // the faults the dead reckoning rejects
-    spread_.emplace(spread);
+    spread_.emplace(dead_reckoning::SpreadOptionsOf(walking));
   }
   if (!options_.plan.empty()) LoadPlan();
   spdlog::info("{}: {} ({}), {} log, start pose from {} ({:.3f}, {:.3f}, {:.3f})", entity_id_,

@@ -99,11 +99,14 @@ TEST(StrideInterpolator, AStoppedWalkerDelaysRecordsByAtMostTheHold) {
   const auto out = Drain(spread);
   ASSERT_EQ(out.size(), 1u);
   EXPECT_TRUE(std::holds_alternative<sensors::LaserScan>(out[0]));
-  // The report after the stop cannot move the released scan: its stride starts after it.
+  // The report after the stop cannot move the released scan: its stride starts after it, so the
+  // scan still held gets its share of 0.25 -> 1.5 s, not of 0 -> 1.5 s.
+  spread.Push(Scan(1.35));
   spread.Push(Stride(1.5, 0.5));
   const auto strides = Strides(Drain(spread));
-  ASSERT_EQ(strides.size(), 1u);
-  EXPECT_DOUBLE_EQ(strides[0].second, 0.5);
+  ASSERT_EQ(strides.size(), 2u);
+  EXPECT_NEAR(strides[0].second, 0.5 * 1.1 / 1.25, 1e-12);
+  EXPECT_NEAR(strides[0].second + strides[1].second, 0.5, 1e-12);
   EXPECT_EQ(spread.counts().released_unspread, 1u);
 }
 
@@ -180,6 +183,45 @@ TEST(StrideInterpolator, AScanAtTheReportsStampComesAfterTheWholeStride) {
   ASSERT_EQ(out.size(), 3u);
   EXPECT_TRUE(std::holds_alternative<sensors::StrideSample>(out[1]));
   EXPECT_TRUE(std::holds_alternative<sensors::LaserScan>(out[2]));
+}
+
+TEST(StrideInterpolator, ARecordStampedFarAheadDoesNotStopTheSpreading) {
+  StrideInterpolator spread(On());
+  spread.Push(Stride(0.0, 0.5));
+  spread.Push(sensors::CompassSample{1e9, 0.0});  // a glitch
+  spread.Push(Scan(0.3));
+  spread.Push(Stride(0.5, 0.5));
+  spread.Push(Scan(0.75));
+  spread.Push(Stride(1.0, 0.5));
+  const auto strides = Strides(Drain(spread));
+  ASSERT_EQ(strides.size(), 5u) << "both scans get their piece";
+  EXPECT_NEAR(strides[1].second, 0.5 * 0.3 / 0.5, 1e-12);
+  EXPECT_NEAR(strides[3].second, 0.25, 1e-12);
+}
+
+TEST(StrideInterpolator, RecordsStampedAfterTheReportWaitForTheNextStride) {
+  StrideInterpolator spread(On());
+  spread.Push(Stride(0.0, 0.5));
+  spread.Push(Scan(0.6));  // came before the report that ends the stride it is not in
+  spread.Push(Stride(0.5, 0.5));
+  EXPECT_EQ(Strides(Drain(spread)).size(), 2u);
+  spread.Push(Stride(1.0, 0.5));
+  const auto out = Drain(spread);
+  const auto strides = Strides(out);
+  ASSERT_EQ(strides.size(), 2u);
+  EXPECT_NEAR(strides[0].second, 0.1, 1e-12);
+  EXPECT_TRUE(std::holds_alternative<sensors::LaserScan>(out[1]));
+}
+
+TEST(StrideInterpolator, AFaultyReportStillEndsAStride) {
+  StrideInterpolator spread(On());
+  spread.Push(Stride(0.0, 0.5));
+  spread.Push(Stride(0.5, 40.0));  // passed on whole; the step ended at 0.5 s all the same
+  spread.Push(Scan(0.75));
+  spread.Push(Stride(1.0, 0.5));
+  const auto strides = Strides(Drain(spread));
+  ASSERT_EQ(strides.size(), 4u);
+  EXPECT_NEAR(strides[2].second, 0.25, 1e-12);
 }
 
 TEST(StrideInterpolationOptions, RejectsBadValues) {

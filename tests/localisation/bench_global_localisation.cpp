@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "pena/dead_reckoning/stride_interpolator.hpp"
+#include "pena/dead_reckoning/human_dead_reckoning.hpp"
 #include "pena/localisation/localisation_chain.hpp"
 #include "pena/sim/scenario.hpp"
 #include "pena/sim/simulator.hpp"
@@ -186,7 +186,7 @@ Trial Run(const sim::EntityRecording& entity, const std::vector<geometry::Segmen
   // The stream as the tools take it (pena localise: a person's strides spread over its scans).
   std::vector<sensors::SensorRecord> records = dead_reckoning::SpreadStrides(
       {entity.records.begin() + static_cast<std::ptrdiff_t>(start), entity.records.end()},
-      options.odometry.dead_reckoning.stride_interpolation);
+      dead_reckoning::SpreadOptionsOf(options.odometry.dead_reckoning));
   for (std::size_t i = 0; i < records.size(); ++i) {
     if (const auto* t = std::get_if<sensors::GroundTruth>(&records[i])) {
       truth = t->world_from_body;

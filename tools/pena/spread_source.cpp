@@ -42,9 +42,8 @@ std::unique_ptr<io::LogSource> OpenChainLog(
       source->description().kind != sensors::EntityKind::kHuman) {
     return source;
   }
-  dead_reckoning::StrideInterpolationOptions spread = options.stride_interpolation;
-  spread.max_stride_m = options.max_stride_m;  // the same faults as the dead reckoning rejects
-  return std::make_unique<StrideSpreadingSource>(std::move(source), spread);
+  return std::make_unique<StrideSpreadingSource>(std::move(source),
+                                                 dead_reckoning::SpreadOptionsOf(options));
 }
 
 }  // namespace pena::cli

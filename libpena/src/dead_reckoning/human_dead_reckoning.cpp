@@ -7,6 +7,12 @@
 
 namespace pena::dead_reckoning {
 
+StrideInterpolationOptions SpreadOptionsOf(const HumanDeadReckoningOptions& options) {
+  StrideInterpolationOptions spread = options.stride_interpolation;
+  spread.max_stride_m = options.max_stride_m;
+  return spread;
+}
+
 HumanDeadReckoning::HumanDeadReckoning(const HumanDeadReckoningOptions& options,
                                        const PosePrior& start)
     : options_(options),
@@ -46,8 +52,8 @@ HumanDeadReckoning::HumanDeadReckoning(const HumanDeadReckoningOptions& options,
   if (options.stride_interpolation.enabled && options.max_stride_period_s > 0.0) {
     throw std::invalid_argument(
         "human_dead_reckoning.max_stride_period_s (the stride extrapolation) and "
-        "stride_interpolation.enabled exclude each other: set stride_interpolation.enabled=0 to "
-        "extrapolate");
+        "dead_reckoning.stride_interpolation.enabled exclude each other: set "
+        "dead_reckoning.stride_interpolation.enabled=0 to extrapolate");
   }
   if (!(options.max_stride_m > 0.0)) {
     throw std::invalid_argument("human_dead_reckoning.max_stride_m must be > 0 m, got " +

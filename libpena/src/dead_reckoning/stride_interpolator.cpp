@@ -35,7 +35,9 @@ void StrideInterpolator::Validate(const StrideInterpolationOptions& options) {
 
 void StrideInterpolator::Push(sensors::SensorRecord record) {
   const double stamp_s = sensors::StampOf(record);
-  if (std::isfinite(stamp_s)) newest_s_ = newest_s_ ? std::max(*newest_s_, stamp_s) : stamp_s;
+  // The latest stamp, not the largest: one record stamped far ahead (a glitch the dead
+  // reckoning ignores) must not make every later record stale.
+  if (std::isfinite(stamp_s)) newest_s_ = stamp_s;
   if (const auto* stride = std::get_if<sensors::StrideSample>(&record)) {
     const bool usable = std::isfinite(stride->stamp_s) && std::isfinite(stride->length_m) &&
                         stride->length_m >= 0.0 && stride->length_m <= options_.max_stride_m &&
@@ -44,9 +46,14 @@ void StrideInterpolator::Push(sensors::SensorRecord record) {
       SpreadStride(*stride);
       return;
     }
-    // Passed on whole, after what it follows, for the dead reckoning to reject and count.
+    // Passed on whole, after what it follows, for the dead reckoning to reject and count. A
+    // step was still taken then: an in-order stamp ends the stride the next report spreads.
+    const bool in_order = std::isfinite(stride->stamp_s) &&
+                          (!last_stride_s_ || stride->stamp_s >= *last_stride_s_);
+    const double stride_stamp_s = stride->stamp_s;
     ReleaseHeld();
     ready_.push_back(std::move(record));
+    if (in_order) last_stride_s_ = stride_stamp_s;
     return;
   }
   held_.push_back(std::move(record));
@@ -70,6 +77,7 @@ void StrideInterpolator::SpreadStride(const sensors::StrideSample& stride) {
   double start_s = walking ? *last_stride_s_
                            : end_s - last_period_s_.value_or(options_.default_stride_period_s);
   if (released_until_s_) start_s = std::max(start_s, *released_until_s_);
+  if (last_stride_s_) start_s = std::max(start_s, *last_stride_s_);  // no piece before a report
   const double span_s = end_s - start_s;
   double cut_s = start_s;
   double spread_m = 0.0;
@@ -81,7 +89,15 @@ void StrideInterpolator::SpreadStride(const sensors::StrideSample& stride) {
     ready_.push_back(sensors::StrideSample{end_s, std::max(stride.length_m - spread_m, 0.0)});
     rest_out = true;
   };
+  // Records stamped after the report (within the hold: a stamp far ahead is a glitch) belong to
+  // the next stride: they stay held, with everything after them.
+  std::deque<sensors::SensorRecord> later;
   for (sensors::SensorRecord& record : held_) {
+    const double record_s = sensors::StampOf(record);
+    if (!later.empty() || (record_s > end_s && record_s <= end_s + options_.max_hold_s)) {
+      later.push_back(std::move(record));
+      continue;
+    }
     if (!rest_out && sensors::StampOf(record) >= end_s) put_rest();
     const auto* scan = std::get_if<sensors::LaserScan>(&record);
     if (!rest_out && span_s > 0.0 && scan && scan->stamp_s > cut_s) {
@@ -95,19 +111,23 @@ void StrideInterpolator::SpreadStride(const sensors::StrideSample& stride) {
     }
     ready_.push_back(std::move(record));
   }
-  held_.clear();
+  held_.swap(later);
   if (!rest_out) put_rest();
   if (spread) ++counts_.strides_spread;
   if (walking) last_period_s_ = end_s - *last_stride_s_;
   last_stride_s_ = end_s;
 }
 
+void StrideInterpolator::NoteReleased(double stamp_s) {
+  // A stamp beyond the hold ahead of the stream is a glitch, not how far the stream got.
+  if (!std::isfinite(stamp_s) || (newest_s_ && stamp_s > *newest_s_ + options_.max_hold_s)) return;
+  released_until_s_ = released_until_s_ ? std::max(*released_until_s_, stamp_s) : stamp_s;
+}
+
 void StrideInterpolator::ReleaseHeld() {
   for (sensors::SensorRecord& record : held_) {
     const double stamp_s = sensors::StampOf(record);
-    if (std::isfinite(stamp_s)) {
-      released_until_s_ = released_until_s_ ? std::max(*released_until_s_, stamp_s) : stamp_s;
-    }
+    NoteReleased(stamp_s);
     ready_.push_back(std::move(record));
     ++counts_.released_unspread;
   }
@@ -117,12 +137,13 @@ void StrideInterpolator::ReleaseHeld() {
 void StrideInterpolator::ReleaseStale() {
   while (!held_.empty()) {
     const double stamp_s = sensors::StampOf(held_.front());
+    // Stale: waited the hold, or stamped beyond it ahead of the stream (a glitch: it must not
+    // hold everything behind it).
     const bool stale = !std::isfinite(stamp_s) || held_.size() > options_.max_held_records ||
-                       (newest_s_ && stamp_s < *newest_s_ - options_.max_hold_s);
+                       (newest_s_ && (stamp_s < *newest_s_ - options_.max_hold_s ||
+                                      stamp_s > *newest_s_ + options_.max_hold_s));
     if (!stale) return;
-    if (std::isfinite(stamp_s)) {
-      released_until_s_ = released_until_s_ ? std::max(*released_until_s_, stamp_s) : stamp_s;
-    }
+    NoteReleased(stamp_s);
     ready_.push_back(std::move(held_.front()));
     held_.pop_front();
     ++counts_.released_unspread;

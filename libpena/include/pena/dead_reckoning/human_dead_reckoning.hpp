@@ -57,6 +57,10 @@ struct HumanDeadReckoningOptions {
   StrideInterpolationOptions stride_interpolation;
 };
 
+// The stride spreading options with the dead reckoning's own fault limit (max_stride_m): what
+// the spreading passes on whole is what this model rejects.
+StrideInterpolationOptions SpreadOptionsOf(const HumanDeadReckoningOptions& options);
+
 // A pose estimate with its covariance (x_m, y_m, theta_rad), mission frame.
 struct PosePrior {
   double stamp_s = 0.0;

@@ -64,6 +64,7 @@ class StrideInterpolator {
   void SpreadStride(const sensors::StrideSample& stride);
   void ReleaseHeld();
   void ReleaseStale();
+  void NoteReleased(double stamp_s);
 
   StrideInterpolationOptions options_;
   std::deque<sensors::SensorRecord> held_;   // waiting for a report
@@ -71,7 +72,7 @@ class StrideInterpolator {
   std::optional<double> last_stride_s_;      // the last report passed on
   std::optional<double> last_period_s_;      // its stride's span
   std::optional<double> released_until_s_;   // the latest stamp released without a report
-  std::optional<double> newest_s_;           // the newest finite stamp pushed
+  std::optional<double> newest_s_;           // the latest finite stamp pushed
   StrideInterpolationCounts counts_;
 };
 
