@@ -10,7 +10,7 @@ namespace {
 
 void RequirePositive(double value, const char* field) {
   if (!(value > 0.0 && std::isfinite(value))) {
-    throw std::invalid_argument(std::string("stride_interpolation.") + field +
+    throw std::invalid_argument(std::string("dead_reckoning.stride_interpolation.") + field +
                                 " must be a finite value > 0, got " + std::to_string(value));
   }
 }
