@@ -37,7 +37,7 @@ void StrideInterpolator::Push(sensors::SensorRecord record) {
   const double stamp_s = sensors::StampOf(record);
   // The latest stamp, not the largest: one record stamped far ahead (a glitch the dead
   // reckoning ignores) must not make every later record stale.
-  if (std::isfinite(stamp_s)) newest_s_ = stamp_s;
+  if (std::isfinite(stamp_s)) latest_s_ = stamp_s;
   if (const auto* stride = std::get_if<sensors::StrideSample>(&record)) {
     const bool usable = std::isfinite(stride->stamp_s) && std::isfinite(stride->length_m) &&
                         stride->length_m >= 0.0 && stride->length_m <= options_.max_stride_m &&
@@ -120,7 +120,7 @@ void StrideInterpolator::SpreadStride(const sensors::StrideSample& stride) {
 
 void StrideInterpolator::NoteReleased(double stamp_s) {
   // A stamp beyond the hold ahead of the stream is a glitch, not how far the stream got.
-  if (!std::isfinite(stamp_s) || (newest_s_ && stamp_s > *newest_s_ + options_.max_hold_s)) return;
+  if (!std::isfinite(stamp_s) || (latest_s_ && stamp_s > *latest_s_ + options_.max_hold_s)) return;
   released_until_s_ = released_until_s_ ? std::max(*released_until_s_, stamp_s) : stamp_s;
 }
 
@@ -140,8 +140,8 @@ void StrideInterpolator::ReleaseStale() {
     // Stale: waited the hold, or stamped beyond it ahead of the stream (a glitch: it must not
     // hold everything behind it).
     const bool stale = !std::isfinite(stamp_s) || held_.size() > options_.max_held_records ||
-                       (newest_s_ && (stamp_s < *newest_s_ - options_.max_hold_s ||
-                                      stamp_s > *newest_s_ + options_.max_hold_s));
+                       (latest_s_ && (stamp_s < *latest_s_ - options_.max_hold_s ||
+                                      stamp_s > *latest_s_ + options_.max_hold_s));
     if (!stale) return;
     NoteReleased(stamp_s);
     ready_.push_back(std::move(held_.front()));

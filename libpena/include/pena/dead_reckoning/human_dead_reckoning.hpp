@@ -51,8 +51,8 @@ struct HumanDeadReckoningOptions {
   // The stride scale learnt from position fixes (AddPositionFix), applied to every stride.
   StrideCalibrationOptions stride_calibration;
   // Each stride spread over the scans taken during it, by the record stream in front of the
-  // dead reckoning (StrideInterpolator; the offline tools apply it, pena-entity does not yet):
-  // this model then receives the pieces as strides. On by default; it replaces the
+  // dead reckoning (StrideInterpolator; the offline tools apply it, pena-entity only with its
+  // pipeline.spread_strides): this model then receives the pieces as strides. On by default; it replaces the
   // extrapolation above, so the two exclude each other.
   StrideInterpolationOptions stride_interpolation;
 };

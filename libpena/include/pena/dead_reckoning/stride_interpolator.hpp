@@ -23,7 +23,7 @@ namespace pena::dead_reckoning {
 // Validated by StrideInterpolator's constructor.
 struct StrideInterpolationOptions {
   bool enabled = true;
-  // A record waits at most this long (behind the newest stamp seen) for its stride's report; a
+  // A record waits at most this long (behind the latest stamp pushed) for its stride's report; a
   // walker who stopped sends none, and the records go on as they are. This is the added latency.
   double max_hold_s = 1.0;
   // A report more than this after the previous one ends a stride begun after standing: it is
@@ -72,7 +72,7 @@ class StrideInterpolator {
   std::optional<double> last_stride_s_;      // the last report passed on
   std::optional<double> last_period_s_;      // its stride's span
   std::optional<double> released_until_s_;   // the latest stamp released without a report
-  std::optional<double> newest_s_;           // the latest finite stamp pushed
+  std::optional<double> latest_s_;           // the latest finite stamp pushed
   StrideInterpolationCounts counts_;
 };
 
