@@ -75,6 +75,22 @@ TEST(CliOdometry, SimulatedMissionGivesOnePosePerScanAtTheScanStamps) {
   EXPECT_NE(ReadBytes(out / "summary.json").find("\"scans\": " + std::to_string(truth.size())),
             std::string::npos);
   EXPECT_NE(run.out.find(std::to_string(truth.size()) + " scans"), std::string::npos) << run.out;
+  // A person's strides are spread over the scans by default; the summary says how many.
+  const std::string summary = ReadBytes(out / "summary.json");
+  EXPECT_NE(summary.find("\"dead_reckoning\": {\"compass_rejected\": "), std::string::npos);
+  EXPECT_NE(summary.find("\"stride_spreading\": {\"strides_spread\": "), std::string::npos);
+  EXPECT_EQ(summary.find("\"strides_spread\": 0,"), std::string::npos) << summary;
+  EXPECT_NE(run.out.find(" strides spread over "), std::string::npos) << run.out;
+}
+
+TEST(CliOdometry, SummarySaysWhenStridesAreNotSpread) {
+  const auto log = SimulateOffice("odo_unspread");
+  const auto out = FreshDir("odo_unspread_out");
+  const PenaRun run = RunPena("odometry --no-matching --log " + log.string() + " --out " +
+                              out.string() + " --set dead_reckoning.stride_interpolation.enabled=0");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("; strides not spread"), std::string::npos) << run.out;
+  EXPECT_EQ(ReadBytes(out / "summary.json").find("stride_spreading"), std::string::npos);
 }
 
 TEST(CliOdometry, NoMatchingGivesTheSamePosesFromThePriorAlone) {
@@ -110,6 +126,7 @@ TEST(CliOdometry, MitCsailRunsAndItsTrajectoryEvaluates) {
               " --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(io::ReadTum(out / "trajectory.tum").size(), 1988u);  // one pose per FLASER line
+  EXPECT_EQ(run.out.find("dead reckoning:"), std::string::npos) << "a robot: " << run.out;
   const PenaRun eval =
       RunPena("eval --json --relations " + Dataset("freiburg/mit-csail.relations").string() +
               " --trajectory " + (out / "trajectory.tum").string());

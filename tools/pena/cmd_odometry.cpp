@@ -113,6 +113,10 @@ struct RunResult {
   geometry::Pose2 world_from_start;
   std::string start_source;
   odometry::OdometryCounts counts;
+  // People only: what the dead reckoning refused (compass, strides) and how the strides were
+  // spread over the scans (absent when spreading is off).
+  std::optional<dead_reckoning::DeadReckoningCounts> dead_reckoning;
+  std::optional<dead_reckoning::StrideInterpolationCounts> spreading;
   long prior_only = 0;  // scans with matching disabled (not in OdometryCounts)
   long records = 0;
   double first_stamp_s = 0.0;
@@ -167,6 +171,8 @@ RunResult RunChain(io::LogSource& source, const OdometryArgs& args,
     }
   }
   run.counts = chain.counts();
+  if (kind == sensors::EntityKind::kHuman) run.dead_reckoning = chain.dead_reckoning_counts();
+  if (const auto* spreading = StrideSpreadingCounts(source)) run.spreading = *spreading;
   run.wall_s = SecondsSince(started);
   return run;
 }
@@ -210,7 +216,18 @@ void WriteSummaryJson(const std::filesystem::path& path, const OdometryArgs& arg
   if (c.walker_fixed_dropped > 0) out << ", \"walker_fixed_dropped\": " << c.walker_fixed_dropped;
   out << ", \"no_points\": " << c.no_points << ", \"prior_only\": " << run.prior_only
       << ", \"keyframes\": " << c.keyframes << ", \"wide_searches\": " << c.wide_searches
-      << ", \"records_ignored\": " << c.records_ignored
+      << ", \"records_ignored\": " << c.records_ignored;
+  if (const auto& d = run.dead_reckoning) {
+    out << ", \"dead_reckoning\": {\"compass_rejected\": " << d->compass_rejected
+        << ", \"gyro_gaps\": " << d->gyro_gaps << ", \"strides_rejected\": " << d->strides_rejected
+        << ", \"out_of_order\": " << d->out_of_order << "}";
+  }
+  if (const auto& p = run.spreading) {
+    out << ", \"stride_spreading\": {\"strides_spread\": " << p->strides_spread
+        << ", \"pieces\": " << p->pieces << ", \"released_unspread\": " << p->released_unspread
+        << "}";
+  }
+  out
       << ", \"log_duration_s\": " << Fixed(run.last_stamp_s - run.first_stamp_s, 6)
       << ", \"processing_wall_s\": " << Fixed(run.wall_s, 3)
       << ", \"total_wall_s\": " << Fixed(total_wall_s, 3)
@@ -234,6 +251,18 @@ void PrintSummary(const RunResult& run, const std::filesystem::path& out_dir) {
   part("no points", c.no_points);
   if (run.prior_only > 0) part("prior only", run.prior_only);
   std::cout << ", " << c.keyframes << " keyframes\n";
+  if (const auto& d = run.dead_reckoning) {
+    std::cout << "dead reckoning: " << d->compass_rejected << " compass readings rejected, "
+              << d->strides_rejected << " strides rejected, " << d->gyro_gaps << " gyro gaps, "
+              << d->out_of_order << " records out of order";
+    if (const auto& p = run.spreading) {
+      std::cout << "; " << p->strides_spread << " strides spread over " << p->pieces
+                << " scans, " << p->released_unspread << " records released unspread";
+    } else {
+      std::cout << "; strides not spread";
+    }
+    std::cout << "\n";
+  }
   std::cout << "log " << Fixed(run.last_stamp_s - run.first_stamp_s, 1) << " s processed in "
             << Fixed(run.wall_s, 2) << " s wall: " << Fixed(Speed(run), 1) << " x real time\n";
   std::cout << "wrote " << (out_dir / "trajectory.tum").string() << ", odometry.csv, "

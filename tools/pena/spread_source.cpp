@@ -25,6 +25,7 @@ class StrideSpreadingSource : public io::LogSource {
   }
   const io::LogDescription& description() const override { return inner_->description(); }
   std::size_t skipped() const override { return inner_->skipped(); }
+  const dead_reckoning::StrideInterpolationCounts& counts() const { return spread_.counts(); }
 
  private:
   std::unique_ptr<io::LogSource> inner_;
@@ -44,6 +45,11 @@ std::unique_ptr<io::LogSource> OpenChainLog(
   }
   return std::make_unique<StrideSpreadingSource>(std::move(source),
                                                  dead_reckoning::SpreadOptionsOf(options));
+}
+
+const dead_reckoning::StrideInterpolationCounts* StrideSpreadingCounts(const io::LogSource& source) {
+  const auto* spreading = dynamic_cast<const StrideSpreadingSource*>(&source);
+  return spreading ? &spreading->counts() : nullptr;
 }
 
 }  // namespace pena::cli

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "pena/dead_reckoning/human_dead_reckoning.hpp"
+#include "pena/dead_reckoning/stride_interpolator.hpp"
 #include "pena/io/log_source.hpp"
 
 namespace pena::cli {
@@ -15,5 +16,8 @@ namespace pena::cli {
 std::unique_ptr<io::LogSource> OpenChainLog(
     const std::filesystem::path& path, const io::ReadOptions& read,
     const dead_reckoning::HumanDeadReckoningOptions& options);
+
+// What the spreading did so far, if `source` (from OpenChainLog) spreads strides; else nullptr.
+const dead_reckoning::StrideInterpolationCounts* StrideSpreadingCounts(const io::LogSource& source);
 
 }  // namespace pena::cli
