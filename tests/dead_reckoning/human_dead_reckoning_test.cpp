@@ -107,6 +107,31 @@ HumanDeadReckoningOptions Carried() {
   return options;
 }
 
+// Without the extrapolation the position waits for the report that ends the stride in progress:
+// the prior's covariance holds what the walker may have walked since the last one.
+TEST(HumanDeadReckoning, CovarianceHoldsTheStrideNotYetReported) {
+  HumanDeadReckoning dead_reckoning(HumanDeadReckoningOptions{}, StartAt(0.0, 0.0, 0.0));
+  // Before any report: up to unreported_pace_m_s (1 m/s) since the start, along the heading.
+  const Eigen::Matrix2d at_start = dead_reckoning.PendingCovarianceAt(0.3);
+  EXPECT_NEAR(at_start(0, 0), 0.3 * 0.3, 1e-12);
+  EXPECT_NEAR(at_start(1, 1), 0.0, 1e-12);
+  WalkStraight(dead_reckoning, 4);  // 0.6 m strides every 0.5 s (1.2 m/s), last at 2.0 s
+  const PosePrior mid_stride = dead_reckoning.PriorAt(2.25);
+  EXPECT_NEAR(mid_stride.world_from_body.x_m, 2.4, 1e-9);  // the position waits for the report
+  const Eigen::Matrix2d pending = dead_reckoning.PendingCovarianceAt(2.25);
+  EXPECT_NEAR(pending(0, 0), 0.3 * 0.3, 1e-9);  // 0.25 s at the last stride's pace
+  EXPECT_NEAR(pending(1, 1), 0.0, 1e-12);
+  EXPECT_GE(mid_stride.covariance(0, 0), pending(0, 0));  // PriorAt adds it to the walk's own
+  // At most one stride, however long the next report takes; none at the report itself.
+  EXPECT_NEAR(dead_reckoning.PendingCovarianceAt(9.0)(0, 0), 0.6 * 0.6, 1e-9);
+  EXPECT_TRUE(dead_reckoning.PendingCovarianceAt(2.0).isZero());
+  HumanDeadReckoningOptions off;
+  off.unreported_pace_m_s = 0.0;
+  HumanDeadReckoning left_out(off, StartAt(0.0, 0.0, 0.0));
+  WalkStraight(left_out, 4);
+  EXPECT_TRUE(left_out.PendingCovarianceAt(2.25).isZero());
+}
+
 TEST(HumanDeadReckoning, CarriesThePositionForwardBetweenStrideReports) {
   HumanDeadReckoning dead_reckoning(Carried(), StartAt(0.0, 0.0, 0.0));
   WalkStraight(dead_reckoning, 4);  // at 2.4 m at t = 2.0 s

@@ -59,6 +59,10 @@ HumanDeadReckoning::HumanDeadReckoning(const HumanDeadReckoningOptions& options,
     throw std::invalid_argument("human_dead_reckoning.max_stride_m must be > 0 m, got " +
                                 std::to_string(options.max_stride_m));
   }
+  if (!(options.unreported_pace_m_s >= 0.0)) {
+    throw std::invalid_argument("human_dead_reckoning.unreported_pace_m_s must be >= 0 m/s, got " +
+                                std::to_string(options.unreported_pace_m_s));
+  }
 }
 
 DeadReckoningEvent HumanDeadReckoning::Add(const sensors::SensorRecord& record) {
@@ -223,16 +227,37 @@ PosePrior HumanDeadReckoning::PriorAt(double stamp_s) const {
   const Eigen::Vector2d ahead_m = calibration_.scale() * AheadRawM(stamp_s);
   const Eigen::Vector2d position = position_m_ + ahead_m;
   prior.world_from_body = {position.x(), position.y(), heading};
-  // The pace may have changed (or the walker stopped): half the extrapolated distance, 1 sigma.
-  prior.covariance.topLeftCorner<2, 2>() = position_covariance_ + 0.25 * ahead_m * ahead_m.transpose();
+  prior.covariance.topLeftCorner<2, 2>() = position_covariance_ + PendingCovarianceAt(stamp_s);
+  prior.covariance(2, 2) = std::pow(heading_.heading_sigma_rad(), 2);
+  return prior;
+}
+
+Eigen::Matrix2d HumanDeadReckoning::PendingCovarianceAt(double stamp_s) const {
   if (stride_dropped_) {
     // The dropped stride: anything from none to a whole stride, in any direction.
     const double half_stride_m = 0.5 * calibration_.scale() * last_stride_m_;
-    prior.covariance.topLeftCorner<2, 2>() +=
-        half_stride_m * half_stride_m * Eigen::Matrix2d::Identity();
+    return half_stride_m * half_stride_m * Eigen::Matrix2d::Identity();
   }
-  prior.covariance(2, 2) = std::pow(heading_.heading_sigma_rad(), 2);
-  return prior;
+  if (PaceKnown()) {
+    // The pace may have changed (or the walker stopped): half the extrapolated distance, 1 sigma.
+    const Eigen::Vector2d ahead_m = calibration_.scale() * AheadRawM(stamp_s);
+    return 0.25 * ahead_m * ahead_m.transpose();
+  }
+  // Not extrapolated: the walker may be as far ahead as it walks between reports (the stride
+  // reported at its end); along the heading, since the sensor measures length, not direction.
+  const double since_s = stamp_s - last_stride_stamp_s_;
+  if (!(since_s > 0.0) || options_.unreported_pace_m_s <= 0.0) return Eigen::Matrix2d::Zero();
+  const bool stride_known = last_stride_period_s_ > 0.0 && last_stride_m_ > 0.0;
+  const double pace_m_s =
+      stride_known ? std::max(last_stride_m_ / last_stride_period_s_, options_.unreported_pace_m_s)
+                   : options_.unreported_pace_m_s;
+  constexpr double kFirstStride_s = 1.0;  // before any report: a stride of one second's walk
+  const double stride_m =
+      stride_known ? last_stride_m_ : options_.unreported_pace_m_s * kFirstStride_s;
+  const double unreported_m = calibration_.scale() * std::min(pace_m_s * since_s, stride_m);
+  const double heading = heading_.HeadingAt(stamp_s);
+  const Eigen::Vector2d along(std::cos(heading), std::sin(heading));
+  return unreported_m * unreported_m * along * along.transpose();
 }
 
 void HumanDeadReckoning::Reset(const PosePrior& corrected) {

@@ -27,6 +27,12 @@ struct HumanDeadReckoningOptions {
   // max_stride_period_s (longer: the walker had stopped, the pace is unknown). 0 disables it
   // (the default: strides move the position at their reports only).
   double max_stride_period_s = 0.0;
+  // Without that extrapolation the position lags the walker by the stride in progress, and the
+  // prior's covariance holds it instead (PendingCovarianceAt): the walker is taken to be up to
+  // this pace ahead since the last report (at least the last stride's pace; the paper: "the normal
+  // speed of a human is around 1 m/s"), at most the last stride (before the first, one second).
+  // 0 leaves the stride in progress out of the covariance.
+  double unreported_pace_m_s = 1.0;
   // A walker whose next report is this many stride periods overdue has stopped, most often part of
   // the way through the stride (the rest is in the first report after walking on): from then on,
   // over one more period, the extrapolation falls back to stopped_stride_fraction of the stride.
@@ -109,6 +115,9 @@ class HumanDeadReckoning {
 
   // The current estimate, heading extrapolated to stamp_s (a scan time).
   PosePrior PriorAt(double stamp_s) const;
+  // The part of PriorAt's x-y covariance (m^2) for the motion the position does not hold yet: the
+  // extrapolated stride's share, a dropped stride, or the stride in progress when not extrapolated.
+  Eigen::Matrix2d PendingCovarianceAt(double stamp_s) const;
 
   // Replaces the estimate after a correction (scan matching, map localisation, operator).
   void Reset(const PosePrior& corrected);
