@@ -7,10 +7,13 @@ rounded stamps), so scans are paired by identical ranges (2 decimals). The rigid
 corrected_from_trajectory is then fitted (least squares, positions) between the corrected poses and
 a TUM trajectory of the Freiburg log (e.g. `pena odometry`'s) at the paired stamps.
 
-usage: radish-frame-fit.py CORRECTED.log.gz FREIBURG.clf.gz TRAJECTORY.tum [SECONDS]
+usage: radish-frame-fit.py CORRECTED.log.gz FREIBURG.clf.gz TRAJECTORY.tum [SECONDS] [--tum OUT]
 SECONDS: use only pairs within the first SECONDS of the trajectory (default: all), so that
 odometry drift does not enter the fit. Prints the transform, the start pose of the trajectory in
 the corrected frame and the residuals.
+--tum OUT: also write every paired corrected pose, moved into the trajectory's frame by the
+fitted transform, at its Freiburg stamp: ground truth for the trajectory (SLAM-corrected, so good
+to a few centimetres), e.g. for scripts/covariance-consistency.py.
 """
 import bisect
 import gzip
@@ -46,10 +49,18 @@ def read_tum(path):
 
 
 def main():
-    if len(sys.argv) < 4:
+    args = sys.argv[1:]
+    tum_out = None
+    if '--tum' in args:
+        i = args.index('--tum')
+        if i + 1 >= len(args):
+            sys.exit(__doc__)
+        tum_out = args[i + 1]
+        del args[i:i + 2]
+    if len(args) < 3:
         sys.exit(__doc__)
-    corrected, freiburg, trajectory = sys.argv[1:4]
-    seconds = float(sys.argv[4]) if len(sys.argv) > 4 else math.inf
+    corrected, freiburg, trajectory = args[0:3]
+    seconds = float(args[3]) if len(args) > 3 else math.inf
     stamp_of = {}
     for key, stamp, _ in scans(freiburg):
         stamp_of.setdefault(key, stamp)
@@ -57,12 +68,13 @@ def main():
     if not traj:
         sys.exit(trajectory + ': no poses')
     stamps = [p[0] for p in traj]
-    pairs, unpaired = [], 0
+    pairs, unpaired, every_pair = [], 0, []
     for key, _, pose in scans(corrected):
         stamp = stamp_of.get(key)
         if stamp is None:
             unpaired += 1
             continue
+        every_pair.append((stamp, pose))
         if stamp - stamps[0] > seconds:
             continue
         i = bisect.bisect_left(stamps, stamp - 1e-3)
@@ -94,6 +106,21 @@ def main():
            math.degrees((h0 + th + math.pi) % (2 * math.pi) - math.pi)))
     print('residual: position RMS %.3f m (max %.3f m), heading RMS %.2f deg' %
           (math.sqrt(sum(e * e for e in err) / n), max(err), math.sqrt(sum(e * e for e in herr) / n)))
+    if tum_out:
+        write_truth(tum_out, every_pair, tx, ty, th)
+
+
+def write_truth(path, stamped_poses, tx, ty, th):
+    """The corrected poses in the trajectory's frame: the inverse of corrected_from_trajectory."""
+    cos, sin = math.cos(th), math.sin(th)
+    with open(path, 'w') as out:
+        for stamp, (x, y, heading) in sorted(stamped_poses):
+            dx, dy = x - tx, y - ty
+            yaw = heading - th
+            x_m, y_m = cos * dx + sin * dy, -sin * dx + cos * dy
+            out.write('%.6f %.6f %.6f 0 0 0 %.9f %.9f\n' %
+                      (stamp, x_m, y_m, math.sin(yaw / 2), math.cos(yaw / 2)))
+    print('wrote %d poses to %s' % (len(stamped_poses), path))
 
 
 if __name__ == '__main__':

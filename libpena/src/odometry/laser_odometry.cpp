@@ -108,6 +108,9 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   ++counts.scans;
   OdometryEstimate out;
   out.stamp_s = scan.stamp_s;
+  gate_trusted = false;
+  fell_back = false;
+  keyframe_from_this_scan = false;
   out.world_from_prior = Predict(scan);
   match_weak_direction.reset();
   poor_timing = timing.Add(scan.stamp_s);
@@ -129,6 +132,7 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
     Match(points, out);
   }
   out.world_from_body = estimate;
+  UpdateCovariance(out);
   out.covariance = covariance;
   // Stretches matched in every direction calibrate the stride scale used in corridors.
   motion.AddPositionFix(scan.stamp_s, estimate,
@@ -171,6 +175,10 @@ geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
                       scan.stamp_s - *previous_scan_stamp_s < options.timing_burst_gap_s);
   const std::optional<geometry::Pose2> coasting =
       frozen_odometry.Predict(motion_pose, previous_estimate, velocity, burst);
+  // Chained from the previous scan, or anchored at the latest keyframe: the covariance of an
+  // unmatched scan grows from the pose the prior was composed from.
+  prior_anchor = estimate;
+  prior_anchor_covariance = covariance;
   if (!motion_pose || !keyframe_motion_pose || local_map.empty()) {
     return geometry::Compose(estimate, increment);
   }
@@ -180,6 +188,8 @@ geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
     return *coasting;
   }
   motion_since_keyframe = geometry::Between(*keyframe_motion_pose, *motion_pose);
+  prior_anchor = local_map.latest().world_from_body;
+  prior_anchor_covariance = local_map.latest().covariance;
   // Anchored at the keyframe, not chained scan to scan: logged odometry often repeats a pose for
   // several scans and then jumps (mit-csail: 85 deg in one step after 1 s of zeros); chaining
   // would add that catch-up on top of the motion the matcher already found.
@@ -201,6 +211,7 @@ scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Poin
                                                        OdometryEstimate& out) {
   for (;;) {
     const scan_matching::SearchWindow searched = window.Current();
+    last_searched = searched;
     out.wide_search = out.wide_search || window.IsWide();
     scan_matching::MatchResult result =
         window.IsBase() ? matcher->MatchExhaustive(points, prior, searched)
@@ -259,6 +270,8 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
     return;
   }
   estimate = result.reference_from_scan;
+  match_information = result.information;
+  match_reference_covariance = ReferenceCovariance(estimate);  // before a keyframe changes it
   const Eigen::Vector2d travel_m(prior.x_m - previous_estimate.x_m, prior.y_m - previous_estimate.y_m);
   match_weak_direction =
       KeepPriorAlongWeakDirection(result.information, options, prior, travel_m, estimate);
@@ -280,6 +293,7 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
   // A deviation trusted after prior_gate_confirm scans must re-anchor the priors at once: without
   // a keyframe here the next prior is as far off again and is gated again.
   if (gate == GateDecision::kTrusted) {
+    gate_trusted = true;
     TakeKeyframe(points, out);
     return;
   }
@@ -290,7 +304,8 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
     const std::optional<geometry::Pose2> motion_pose =
         frozen_odometry.PairedPose(motion.last_pose(), estimate);
     held = HeldCandidate{points,      estimate,    motion_pose, motion.heading_sigma_rad(),
-                         poor_timing, out.stamp_s, WeakDirectionInMotionFrame(motion_pose)};
+                         poor_timing, out.stamp_s, WeakDirectionInMotionFrame(motion_pose),
+                         covariance};
     return;
   }
   TakeKeyframe(points, out);

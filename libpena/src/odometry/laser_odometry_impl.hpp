@@ -83,7 +83,19 @@ struct LaserOdometry::Impl {
   std::optional<Eigen::Vector2d> keyframe_weak_direction;
   geometry::Pose2 previous_estimate;  // at the previous scan
   geometry::Pose2 velocity;           // estimated motion over the previous scan interval
+  // Of `estimate` (PoseCovarianceOptions); zero at the start. Keyframes keep theirs.
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  // The pose this scan's prior was composed from (the latest keyframe, or the previous scan) and
+  // its covariance: what an unmatched scan's covariance grows from (set by Predict).
+  geometry::Pose2 prior_anchor;
+  Eigen::Matrix3d prior_anchor_covariance = Eigen::Matrix3d::Zero();
+  // A match inherits the covariance of the reference it was matched against (ReferenceCovariance).
+  Eigen::Matrix3d match_reference_covariance = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d match_information = Eigen::Matrix3d::Zero();  // J^T J of this scan's match
+  bool keyframe_from_this_scan = false;  // its covariance is set once UpdateCovariance knows it
+  scan_matching::SearchWindow last_searched;  // the window of the latest search (bounds a match)
+  bool gate_trusted = false;  // this scan's match was trusted after prior_gate_confirm
+  bool fell_back = false;     // this scan's match was dropped for the prior (FallBackToPrior)
   // The motion sensor's motion since the latest keyframe (nullopt without a sensor pose): the
   // prior-consistency gate's allowance grows with it.
   std::optional<geometry::Pose2> motion_since_keyframe;
@@ -103,6 +115,7 @@ struct LaserOdometry::Impl {
     bool poor_timing = false;
     double stamp_s = 0.0;
     std::optional<Eigen::Vector2d> weak_direction;  // as keyframe_weak_direction
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // the held scan's (UpdateCovariance)
   };
   std::optional<HeldCandidate> held;
   // drop_walker_fixed_points (people's dead reckoning only): the previous scan's usable returns
@@ -114,6 +127,12 @@ struct LaserOdometry::Impl {
   OdometryCounts counts;
 
   OdometryEstimate AddScan(const sensors::LaserScan& scan);
+  // This scan's covariance; the keyframe's and the held candidate's too when it became one.
+  void UpdateCovariance(const OdometryEstimate& out);
+  // The reference keyframes' covariances carried to `world_from_body`, weighted by their points:
+  // the match aligns the scan with all of them at once. (The weighted mean bounds the covariance
+  // of the weighted mean of their errors however those are correlated.)
+  Eigen::Matrix3d ReferenceCovariance(const geometry::Pose2& world_from_body) const;
   geometry::Pose2 Predict(const sensors::LaserScan& scan);
   // drop_walker_fixed_points: `points` without the returns that move with the body.
   scan_matching::Points2 DropWalkerFixed(scan_matching::Points2 points);
@@ -137,7 +156,7 @@ struct LaserOdometry::Impl {
   bool FillWhileFrozen() const;
   void TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out);
   void AddKeyframe(const scan_matching::Points2& points, const geometry::Pose2& world_from_body,
-                   bool bursty, double stamp_s);
+                   bool bursty, double stamp_s, const Eigen::Matrix3d& covariance);
   bool NearAKeyframe(const geometry::Pose2& moved) const;
   void CommitHeld(OdometryEstimate& out);
   // kGated: outside the prior-consistency gate; kTrusted: outside, but the last
@@ -146,6 +165,12 @@ struct LaserOdometry::Impl {
   GateDecision CheckPriorGate(const OdometryEstimate& out);
   bool HoldDuringFastTurn(double score, const OdometryEstimate& out) const;
   double GateBaseRad() const;
+  // How far a match may deviate from the prior before the gate holds it (nullopt: no gate now).
+  struct GateAllowance {
+    double m = 0.0;
+    double rad = 0.0;
+  };
+  std::optional<GateAllowance> PriorGateAllowance() const;
   void FallBackToPrior(const scan_matching::Points2& points, OdometryEstimate& out);
 };
 

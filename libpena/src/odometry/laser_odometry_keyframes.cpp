@@ -27,6 +27,7 @@ double LaserOdometry::Impl::GateBaseRad() const {
 void LaserOdometry::Impl::FallBackToPrior(const scan_matching::Points2& points,
                                           OdometryEstimate& out) {
   estimate = out.world_from_prior;
+  fell_back = true;  // its covariance is the prior's, not the match's
   match_weak_direction.reset();  // the keyframe is the prior's in every direction
   // The keyframe-anchored prior carries every keyframe's heading error along; the gyro + compass
   // heading is bounded by the compass (ff1 of team seed 1 alone: 0.5 deg RMS). Take that one.
@@ -79,7 +80,7 @@ void LaserOdometry::Impl::CommitHeld(OdometryEstimate& out) {
   HeldCandidate candidate = std::move(*held);
   held.reset();
   AddKeyframe(candidate.points, candidate.world_from_body, candidate.poor_timing,
-              candidate.stamp_s);
+              candidate.stamp_s, candidate.covariance);
   keyframe_motion_pose = candidate.motion_pose;
   keyframe_motion_stamp_s = candidate.stamp_s;
   keyframe_heading_sigma_rad = candidate.heading_sigma_rad;
@@ -114,16 +115,23 @@ bool LaserOdometry::Impl::HoldDuringFastTurn(double score, const OdometryEstimat
 // scan that does not belong to its stamp (intel: scans from a second earlier re-delivered during
 // a turn on the spot). Either way it must not become a keyframe: the next priors are anchored
 // there. Trusted after prior_gate_confirm in a row: then the motion sensor is what is wrong.
-LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const OdometryEstimate& out) {
-  if (options.prior_gate_rad <= 0.0 || !motion_since_keyframe) return GateDecision::kInside;
-  const geometry::Pose2 deviation = geometry::Between(out.world_from_prior, estimate);
+std::optional<LaserOdometry::Impl::GateAllowance> LaserOdometry::Impl::PriorGateAllowance() const {
+  if (options.prior_gate_rad <= 0.0 || !motion_since_keyframe) return std::nullopt;
   const double moved_m = std::hypot(motion_since_keyframe->x_m, motion_since_keyframe->y_m);
   const double turned_rad = std::abs(geometry::NormalizeAngle(motion_since_keyframe->theta_rad));
   const double fraction_rad = motion.mode() == MotionPrior::kDeadReckoning
                                   ? options.prior_gate_fraction_gyro
                                   : options.prior_gate_fraction;
-  const double allowed_rad = GateBaseRad() + fraction_rad * turned_rad;
-  const double allowed_m = options.prior_gate_m + options.prior_gate_fraction * moved_m;
+  return GateAllowance{options.prior_gate_m + options.prior_gate_fraction * moved_m,
+                       GateBaseRad() + fraction_rad * turned_rad};
+}
+
+LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const OdometryEstimate& out) {
+  const std::optional<GateAllowance> allowed = PriorGateAllowance();
+  if (!allowed) return GateDecision::kInside;
+  const geometry::Pose2 deviation = geometry::Between(out.world_from_prior, estimate);
+  const double allowed_rad = allowed->rad;
+  const double allowed_m = allowed->m;
   const bool outside = std::abs(deviation.theta_rad) > allowed_rad ||
                        std::hypot(deviation.x_m, deviation.y_m) > allowed_m;
   if (!outside) {
@@ -174,7 +182,8 @@ bool LaserOdometry::Impl::FillWhileFrozen() const {
 
 void LaserOdometry::Impl::TakeKeyframe(const scan_matching::Points2& points, OdometryEstimate& out) {
   held.reset();
-  AddKeyframe(points, estimate, poor_timing, out.stamp_s);
+  AddKeyframe(points, estimate, poor_timing, out.stamp_s, covariance);
+  keyframe_from_this_scan = true;
   keyframe_motion_pose = frozen_odometry.PairedPose(motion.last_pose(), estimate);
   keyframe_motion_stamp_s = out.stamp_s;
   keyframe_heading_sigma_rad = motion.heading_sigma_rad();
@@ -195,7 +204,7 @@ bool LaserOdometry::Impl::NearAKeyframe(const geometry::Pose2& moved) const {
 
 void LaserOdometry::Impl::AddKeyframe(const scan_matching::Points2& points,
                                       const geometry::Pose2& world_from_body, bool bursty,
-                                      double stamp_s) {
+                                      double stamp_s, const Eigen::Matrix3d& keyframe_covariance) {
   const double max_gap_beams = bursty ? options.reference_fill_max_gap_beams_bursty
                                       : options.reference_fill_max_gap_beams;
   local_map.Add({world_from_body,
@@ -203,7 +212,7 @@ void LaserOdometry::Impl::AddKeyframe(const scan_matching::Points2& points,
                                          world_from_body, fill_spacing_m,
                                          options.reference_fill_max_gap_m, max_gap_beams,
                                          fill_max_range_m, options.reference_fill_band_spacing_m),
-                 stamp_s});
+                 stamp_s, keyframe_covariance});
   gated_in_row = 0;
   matcher.emplace(options.matcher, local_map.Reference());
 }

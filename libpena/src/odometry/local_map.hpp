@@ -11,6 +11,8 @@
 #include <optional>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "pena/geometry/pose2.hpp"
 #include "pena/scan_matching/point_set.hpp"
 
@@ -21,6 +23,9 @@ struct Keyframe {
   geometry::Pose2 world_from_body;
   scan_matching::Points2 points_world;
   double stamp_s = 0.0;  // when the scan was taken (the place choice's age limit)
+  // Of world_from_body (x_m, y_m, theta_rad; PoseCovarianceOptions): matches against the
+  // reference inherit it.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
 // The tilt model (paper eq. 1, Fig. 2b): a laser h above the floor, pitched by at most
@@ -56,6 +61,12 @@ class LocalMap {
   void Clear();
   bool empty() const { return keyframes_.empty(); }
   const Keyframe& latest() const { return keyframes_.back(); }
+  // The latest keyframe's covariance is known only once its scan's match has been judged.
+  void SetLatestCovariance(const Eigen::Matrix3d& covariance) {
+    keyframes_.back().covariance = covariance;
+  }
+  // The keyframes the reference is built from, oldest first.
+  std::vector<const Keyframe*> ReferenceKeyframes() const;
   bool place_choice() const { return place_.pool_keyframes > 0; }
 
   // Place choice only: when the pool keyframe ranked best for world_from_body at stamp_s is not

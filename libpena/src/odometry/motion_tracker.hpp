@@ -39,6 +39,11 @@ class MotionTracker {
   // The heading filter's standard deviation at the last scan given to TakeIncrement (dead
   // reckoning only: nullopt otherwise).
   const std::optional<double>& heading_sigma_rad() const { return heading_sigma_rad_; }
+  // The dead reckoning's covariance of the motion its pose did not hold yet at the last scan given
+  // to TakeIncrement (x-y, m^2; HumanDeadReckoning::PendingCovarianceAt); zero for other priors.
+  const Eigen::Matrix2d& pending_position_covariance() const {
+    return pending_position_covariance_;
+  }
   // Whether the heading filter rejected a compass reading (innovation-gated: a magnetic
   // disturbance) in the window_s before stamp_s. Dead reckoning only; false otherwise.
   bool CompassRejectedWithin(double stamp_s, double window_s) const;
@@ -53,6 +58,7 @@ class MotionTracker {
   geometry::Pose2 world_from_start_;                      // the dead reckoning's start
   double start_stamp_s_ = 0.0;
   std::optional<double> heading_sigma_rad_;               // at the previous scan
+  Eigen::Matrix2d pending_position_covariance_ = Eigen::Matrix2d::Zero();  // at the previous scan
   Eigen::Vector2d stride_jump_m_ = Eigen::Vector2d::Zero();   // see stride_jump_m()
   Eigen::Vector2d jumps_so_far_m_ = Eigen::Vector2d::Zero();  // the dead reckoning's sum then
   std::vector<dead_reckoning::StrideJump> stride_jumps_;       // see stride_jumps()

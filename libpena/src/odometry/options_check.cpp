@@ -109,6 +109,24 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
   Require(o.stale_repeat_m >= 0.0, "stale_repeat_m", ">= 0 m", o.stale_repeat_m);
   Require(o.stale_changed_m >= o.stale_repeat_m, "stale_changed_m", ">= stale_repeat_m (m)",
           o.stale_changed_m);
+  const PoseCovarianceOptions& c = o.covariance;
+  Require(c.motion_m_per_sqrt_m >= 0.0, "covariance.motion_m_per_sqrt_m", ">= 0 m/sqrt(m)",
+          c.motion_m_per_sqrt_m);
+  Require(c.motion_rad_per_sqrt_m >= 0.0, "covariance.motion_rad_per_sqrt_m", ">= 0 rad/sqrt(m)",
+          c.motion_rad_per_sqrt_m);
+  Require(c.motion_rad_per_sqrt_rad >= 0.0, "covariance.motion_rad_per_sqrt_rad",
+          ">= 0 rad/sqrt(rad)", c.motion_rad_per_sqrt_rad);
+  Require(c.match_residual_sd_m > 0.0, "covariance.match_residual_sd_m", "> 0 m",
+          c.match_residual_sd_m);
+  Require(c.match_min_sd_m >= 0.0, "covariance.match_min_sd_m", ">= 0 m", c.match_min_sd_m);
+  Require(c.match_min_sd_rad >= 0.0, "covariance.match_min_sd_rad", ">= 0 rad", c.match_min_sd_rad);
+  Require(c.gate_trusted_disagreement_share >= 0.0 && c.gate_trusted_disagreement_share <= 1.0,
+          "covariance.gate_trusted_disagreement_share", "in [0, 1]",
+          c.gate_trusted_disagreement_share);
+  Require(c.weak_ratio >= 0.0 && c.weak_ratio <= 1.0, "covariance.weak_ratio", "in [0, 1]",
+          c.weak_ratio);
+  Require(c.weak_disagreement_share >= 0.0, "covariance.weak_disagreement_share", ">= 0",
+          c.weak_disagreement_share);
   scan_matching::ValidateWindow(o.window, o.matcher);
   scan_matching::ValidateWindow(o.wide_window, o.matcher);
   return o;

@@ -9,6 +9,7 @@
 
 #include "pena/dead_reckoning/human_dead_reckoning.hpp"
 #include "pena/geometry/pose2.hpp"
+#include "pena/odometry/pose_covariance_options.hpp"
 #include "pena/odometry/walker_fixed_points_options.hpp"
 #include "pena/scan_matching/correlation_scan_matcher.hpp"
 #include "pena/sensors/entity.hpp"
@@ -155,6 +156,7 @@ struct LaserOdometryOptions {
   // default: measured worse (docs/odometry.md, thirteenth round).
   bool drop_walker_fixed_points = false;
   WalkerFixedPointsOptions walker_fixed_points;  // its thresholds (checked even when off)
+  PoseCovarianceOptions covariance;  // how OdometryEstimate::covariance grows
   // Prior-consistency gate (people and robots with a motion sensor): a match that moved the
   // pose farther from the motion prior than the sensor can be wrong by is not trusted at once:
   // the scan is not made a keyframe (a stale or aliased scan must not anchor the next priors). The allowance grows with the motion since the latest keyframe. After
@@ -256,6 +258,8 @@ enum class MatchStatus {
 struct OdometryEstimate {
   double stamp_s = 0.0;
   geometry::Pose2 world_from_body;
+  // Of world_from_body (x_m, y_m, theta_rad): zero at the known start, growing with the drift
+  // (PoseCovarianceOptions); a jump the prior gate let through adds its whole size.
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   geometry::Pose2 world_from_prior;  // the prediction the matcher searched around
   MatchStatus status = MatchStatus::kFirst;
