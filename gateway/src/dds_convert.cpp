@@ -1,7 +1,10 @@
 #include "pena/gateway/dds_convert.hpp"
 
+#include <array>
 #include <charconv>
+#include <cmath>
 #include <string_view>
+#include <utility>
 
 #include "from_dds.hpp"
 #include "to_dds.hpp"
@@ -31,11 +34,24 @@ std::optional<std::uint64_t> AnnotationNumber(std::string_view id, std::string_v
   return number;
 }
 
+// The 1-sigma radius of the x-y covariance (its largest axis) and the heading's; 0 where the
+// sample's covariance is missing or malformed (not finite, not positive): unknown, not certain.
+std::pair<double, double> PoseSds(const std::array<double, 9>& row_major) {
+  const double xx = row_major[0], xy = row_major[1], yy = row_major[4], heading = row_major[8];
+  if (!std::isfinite(xx) || !std::isfinite(xy) || !std::isfinite(yy) || !std::isfinite(heading)) {
+    return {0.0, 0.0};
+  }
+  // The largest eigenvalue of [[xx, xy], [xy, yy]].
+  const double largest = 0.5 * (xx + yy) + std::hypot(0.5 * (xx - yy), xy);
+  return {largest > 0.0 ? std::sqrt(largest) : 0.0, heading > 0.0 ? std::sqrt(heading) : 0.0};
+}
+
 }  // namespace
 
 PoseUpdate PoseFromDds(const pena_dds::EntityPose& sample, double stamp_s) {
+  const auto [position_sd_m, heading_sd_rad] = PoseSds(sample.covariance());
   return PoseUpdate{sample.entity_id().to_string(), services::FromDds(sample.world_from_body()),
-                    stamp_s};
+                    stamp_s, position_sd_m, heading_sd_rad};
 }
 
 pena_dds::EntityPose PoseToDds(const PoseUpdate& pose, std::uint64_t seq) {
@@ -46,6 +62,12 @@ pena_dds::EntityPose PoseToDds(const PoseUpdate& pose, std::uint64_t seq) {
   out.stamp_s(pose.stamp_s);
   out.world_from_body(services::ToDds(pose.world_from_body));
   out.odom_from_body(services::ToDds(pose.world_from_body));
+  // The link carries a circle: the far side's covariance is diagonal, as wide as the largest axis.
+  const double position_var_m2 = pose.position_sd_m * pose.position_sd_m;
+  std::array<double, 9> covariance{};
+  covariance[0] = covariance[4] = position_var_m2;
+  covariance[8] = pose.heading_sd_rad * pose.heading_sd_rad;
+  out.covariance(covariance);
   out.status(pena_dds::POSE_MATCHED);
   return out;
 }

@@ -31,12 +31,22 @@ std::uint32_t HeadingDdeg(double theta_rad) {
   return static_cast<std::uint32_t>(((ddeg % 3600) + 3600) % 3600);
 }
 
+// A standard deviation in `quantum` units, rounded up so the far side is never more certain;
+// unknown (0, negative or not finite) stays 0, and a huge one is capped.
+std::uint32_t SdQuanta(double sd, double quantum) {
+  constexpr double kMaxQuanta = 1e9;
+  if (!(sd > 0.0)) return 0;
+  return static_cast<std::uint32_t>(std::min(std::ceil(sd / quantum), kMaxQuanta));
+}
+
 void PutPose(const PoseUpdate& pose, std::uint64_t base_ms, link::Pose* out) {
   out->set_entity(pose.entity);
   out->set_x_cm(ClampInt32(pose.world_from_body.x_m * 100.0));
   out->set_y_cm(ClampInt32(pose.world_from_body.y_m * 100.0));
   out->set_heading_ddeg(HeadingDdeg(pose.world_from_body.theta_rad));
   out->set_stamp_offset_ms(StampOffset(pose.stamp_s, base_ms));
+  out->set_position_sd_cm(SdQuanta(pose.position_sd_m, 0.01));
+  out->set_heading_sd_ddeg(SdQuanta(pose.heading_sd_rad, 0.1 / kRadToDeg));
 }
 
 void PutAnnotation(const Annotation& a, std::uint64_t base_ms, link::Annotation* out) {
@@ -134,7 +144,8 @@ std::optional<DomainItem> FromProto(const link::Item& item, std::uint64_t base_m
       if (p.heading_ddeg() >= 3600) return Fail(error, "pose: heading_ddeg >= 3600");
       const double theta = geometry::NormalizeAngle(p.heading_ddeg() / 10.0 / kRadToDeg);
       return PoseUpdate{p.entity(), {p.x_cm() / 100.0, p.y_cm() / 100.0, theta},
-                        StampFrom(p.stamp_offset_ms(), base_ms)};
+                        StampFrom(p.stamp_offset_ms(), base_ms), p.position_sd_cm() / 100.0,
+                        p.heading_sd_ddeg() / 10.0 / kRadToDeg};
     }
     case link::Item::kAnnotation: {
       const link::Annotation& a = item.annotation();

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "pena/gateway/frame.hpp"
@@ -216,7 +217,33 @@ TEST(LinkCodec, PoseRoundTripsWithinQuanta) {
   EXPECT_NEAR(geometry::NormalizeAngle(got.world_from_body.theta_rad - 3.0), 0.0,
               0.05 * std::numbers::pi / 180.0);
   EXPECT_NEAR(got.stamp_s, 100.1234, 0.0005);
+  EXPECT_EQ(got.position_sd_m, 0.0);  // unknown stays unknown, and costs no byte
   EXPECT_LE(item.ByteSizeLong(), 22U);
+}
+
+// The uncertainty crosses rounded up (the far side is never more certain), in a few bytes.
+TEST(LinkCodec, PoseUncertaintyRoundsUpWithinAQuantum) {
+  const PoseUpdate pose{"ff1", {12.345, -7.891, 3.0}, 100.1234, 0.1234, 0.0123};
+  link::Item item;
+  ToProto(pose, 100000, &item);
+  std::string error;
+  std::optional<DomainItem> back = FromProto(item, 100000, &error);
+  ASSERT_TRUE(back) << error;
+  const auto& got = std::get<PoseUpdate>(*back);
+  EXPECT_GE(got.position_sd_m, 0.1234);
+  EXPECT_LT(got.position_sd_m, 0.1234 + 0.01);
+  EXPECT_GE(got.heading_sd_rad, 0.0123);
+  EXPECT_LT(got.heading_sd_rad, 0.0123 + 0.1 * std::numbers::pi / 180.0);
+  EXPECT_LE(item.ByteSizeLong(), 26U);
+  // Not finite or negative: unknown.
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), -1.0}) {
+    link::Item odd;
+    ToProto(PoseUpdate{"ff1", {}, 100.0, bad, bad}, 100000, &odd);
+    back = FromProto(odd, 100000, &error);
+    ASSERT_TRUE(back) << error;
+    EXPECT_EQ(std::get<PoseUpdate>(*back).position_sd_m, 0.0);
+    EXPECT_EQ(std::get<PoseUpdate>(*back).heading_sd_rad, 0.0);
+  }
 }
 
 TEST(LinkCodec, RejectsHeadingOutOfRangeAndEmptyBodies) {

@@ -21,10 +21,13 @@ inline constexpr unsigned kAnnotationKindBits = 3;
 inline constexpr std::uint64_t kAnnotationRetractedBit = 1u << kAnnotationKindBits;
 inline constexpr unsigned kAnnotationIdShift = 4;
 
-// An entity's pose: entity and world_from_body; `stamp_s` is the sample's wall-clock source time.
+// An entity's pose: entity, world_from_body and its 1-sigma position radius (the largest axis of
+// the covariance's x-y ellipse) and heading (0 for a missing or malformed covariance);
+// `stamp_s` is the sample's wall-clock source time.
 PoseUpdate PoseFromDds(const pena_dds::EntityPose& sample, double stamp_s);
-// The far side's pose sample: odom_from_body = world_from_body, zero covariance, POSE_MATCHED,
-// stamp_s = the wall-clock stamp (mission time does not cross), `seq` counted by the publisher.
+// The far side's pose sample: odom_from_body = world_from_body, a diagonal covariance from the
+// sigmas (the position's a circle), POSE_MATCHED, stamp_s = the wall-clock stamp (mission time
+// does not cross), `seq` counted by the publisher.
 pena_dds::EntityPose PoseToDds(const PoseUpdate& pose, std::uint64_t seq);
 
 // An annotation whose id is "<author_id>/<n>" (n decimal, < 2^60); kinds VICTIM_FOUND and

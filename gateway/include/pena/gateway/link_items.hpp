@@ -16,6 +16,9 @@ struct PoseUpdate {
   std::string entity;
   geometry::Pose2 world_from_body;
   double stamp_s = 0.0;
+  // 1-sigma: the largest axis of the x-y covariance's ellipse, and the heading's (0: unknown).
+  double position_sd_m = 0.0;
+  double heading_sd_rad = 0.0;
 };
 
 // An alarm or an annotation placed on the map (world frame). Sent reliably, first.
