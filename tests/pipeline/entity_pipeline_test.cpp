@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "pena/pipeline/start_pose.hpp"
@@ -113,6 +114,36 @@ TEST(EntityPipeline, MapFromOdomCorrectionMovesThePose) {
   ASSERT_TRUE(next.has_value());
   EXPECT_NEAR(next->world_from_body.x_m - next->odometry.world_from_body.x_m, 1.0, 1e-9);
   EXPECT_NEAR(next->world_from_body.y_m - next->odometry.world_from_body.y_m, -0.5, 1e-9);
+}
+
+// What EntityPose publishes: the laser odometry's covariance, turned with the map frame.
+TEST(EntityPipeline, PublishedCovarianceIsTheOdometrysInTheMapFrame) {
+  const sim::EntityRecording& robot = Robot();
+  EntityPipeline pipeline = MakePipeline(robot);
+  std::size_t i = 0;
+  std::optional<ScanStep> first;
+  for (; i < robot.records.size() && !first; ++i) first = pipeline.Add(robot.records[i]);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_TRUE(first->covariance.isZero());  // the start defines the frame
+  Correction correction;
+  correction.map_from_odom = {1.0, -0.5, std::numbers::pi / 2};  // a quarter turn
+  correction.confidence = 0.9;
+  ASSERT_EQ(pipeline.ApplyCorrection(correction).status, CorrectionStatus::kApplied);
+  std::optional<ScanStep> last;
+  for (; i < robot.records.size(); ++i) {
+    if (auto step = pipeline.Add(robot.records[i])) last = std::move(step);
+  }
+  ASSERT_TRUE(last.has_value());
+  const Eigen::Matrix3d& odom = last->odometry.covariance;
+  const Eigen::Matrix3d& map = last->covariance;
+  ASSERT_GT(odom(0, 0) + odom(1, 1), 0.0);
+  // R P R^T with R the quarter turn: x and y swap, their cross terms change sign where x flips.
+  EXPECT_NEAR(map(0, 0), odom(1, 1), 1e-12);
+  EXPECT_NEAR(map(1, 1), odom(0, 0), 1e-12);
+  EXPECT_NEAR(map(0, 1), -odom(1, 0), 1e-12);
+  EXPECT_NEAR(map(0, 2), -odom(1, 2), 1e-12);
+  EXPECT_NEAR(map(1, 2), odom(0, 2), 1e-12);
+  EXPECT_NEAR(map(2, 2), odom(2, 2), 1e-15);
 }
 
 TEST(EntityPipeline, PoseCorrectionAtAPastStampSolvesMapFromOdom) {
