@@ -130,10 +130,8 @@ LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const Odom
   const std::optional<GateAllowance> allowed = PriorGateAllowance();
   if (!allowed) return GateDecision::kInside;
   const geometry::Pose2 deviation = geometry::Between(out.world_from_prior, estimate);
-  const double allowed_rad = allowed->rad;
-  const double allowed_m = allowed->m;
-  const bool outside = std::abs(deviation.theta_rad) > allowed_rad ||
-                       std::hypot(deviation.x_m, deviation.y_m) > allowed_m;
+  const bool outside = std::abs(deviation.theta_rad) > allowed->rad ||
+                       std::hypot(deviation.x_m, deviation.y_m) > allowed->m;
   if (!outside) {
     gate_confirmation.Inside();
     return GateDecision::kInside;

@@ -151,19 +151,18 @@ bool LocalMap::Covers(const geometry::Pose2& world_from_body, double distance_m,
 
 scan_matching::Points2 LocalMap::Reference() const { return ReferenceOf(chosen_); }
 
-std::vector<const Keyframe*> LocalMap::ReferenceKeyframes() const {
+std::vector<const Keyframe*> LocalMap::ReferenceKeyframes() const { return KeyframesOf(chosen_); }
+
+std::vector<const Keyframe*> LocalMap::KeyframesOf(const std::vector<std::int64_t>& chosen) const {
   std::vector<const Keyframe*> used;
   for (std::size_t i = 0; i < keyframes_.size(); ++i) {
-    if (IsChosen(i)) used.push_back(&keyframes_[i]);
+    if (std::binary_search(chosen.begin(), chosen.end(), ids_[i])) used.push_back(&keyframes_[i]);
   }
   return used;
 }
 
 scan_matching::Points2 LocalMap::ReferenceOf(const std::vector<std::int64_t>& chosen) const {
-  std::vector<const Keyframe*> used;
-  for (std::size_t i = 0; i < keyframes_.size(); ++i) {
-    if (std::binary_search(chosen.begin(), chosen.end(), ids_[i])) used.push_back(&keyframes_[i]);
-  }
+  const std::vector<const Keyframe*> used = KeyframesOf(chosen);
   scan_matching::Points2 reference;
   if (!require_confirmed_ || used.size() < 2) {
     for (const Keyframe* keyframe : used) {

@@ -94,6 +94,8 @@ class LocalMap {
   std::vector<std::int64_t> ChosenFor(const geometry::Pose2& world_from_body, double stamp_s) const;
   void FillWithRecent(std::vector<std::int64_t>& chosen) const;
   bool IsChosen(std::size_t index) const;
+  // The keyframes whose ids are in `chosen` (sorted), oldest first.
+  std::vector<const Keyframe*> KeyframesOf(const std::vector<std::int64_t>& chosen) const;
   scan_matching::Points2 ReferenceOf(const std::vector<std::int64_t>& chosen) const;
 
   int max_keyframes_;

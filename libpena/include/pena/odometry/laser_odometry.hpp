@@ -259,7 +259,8 @@ struct OdometryEstimate {
   double stamp_s = 0.0;
   geometry::Pose2 world_from_body;
   // Of world_from_body (x_m, y_m, theta_rad): zero at the known start, growing with the drift
-  // (PoseCovarianceOptions); a jump the prior gate let through adds its whole size.
+  // (PoseCovarianceOptions, docs/odometry.md "Pose covariance"); a match that disagrees with the
+  // prior (outside its gate, or along a corridor) adds that disagreement.
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   geometry::Pose2 world_from_prior;  // the prediction the matcher searched around
   MatchStatus status = MatchStatus::kFirst;
