@@ -55,7 +55,9 @@ pid_t SpawnFusion(int domain, const std::filesystem::path& run) {
 
 pid_t SpawnEntity(int domain, const std::filesystem::path& run) {
   std::vector<std::string> args = {PENA_ENTITY_BIN, "--input", (LostMission() / "robot1").string(),
-                                   "--rate", "2", "--wait-for-readers", "20"};
+                                   "--rate", "2", "--wait-for-readers", "20",
+                                   // killed with SIGKILL: no shared memory (LoopbackUdpDds)
+                                   "--profile", "pena_loopback_udp"};
   for (const std::string& arg : Profiles(domain)) args.push_back(arg);
   return testing::Spawn(args, run / "entity.log");
 }
@@ -68,7 +70,7 @@ bool AddsWalls(const pena_dds::GlobalMapDelta& delta) {
 TEST(EntityLost, SilentEntityIsMarkedLostAndItsWallsStayInTheGlobalMap) {
   const int domain = testing::TestDomain(50);
   const std::filesystem::path run = testing::ScratchDir("lost-run");
-  Participant participant(testing::LoopbackDds(domain), "test-lost");
+  Participant participant(testing::LoopbackUdpDds(domain), "test-lost");
   WorkQueue<pena_dds::GlobalMapDelta> deltas;
   Reader<pena_dds::GlobalMapDeltaPubSubType> reader(
       participant, topics::kGlobalMapDelta,

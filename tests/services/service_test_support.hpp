@@ -33,6 +33,16 @@ inline DdsOptions LoopbackDds(int domain_id) {
   return options;
 }
 
+// The same without shared memory (profile pena_loopback_udp), for every participant of a test
+// that kills one abruptly. With Fast DDS 2.9.1, a survivor's shared-memory teardown after a peer
+// died of SIGSEGV sometimes segfaults inside SharedMemTransport::delete_input_channel (2 in 60
+// parallel runs of the crash test; docs/dds.md, "Shared memory and killed peers").
+inline DdsOptions LoopbackUdpDds(int domain_id) {
+  DdsOptions options = LoopbackDds(domain_id);
+  options.participant_profile = "pena_loopback_udp";
+  return options;
+}
+
 // A DDS domain id no other test process on this machine holds: the first of 100..229 whose lock
 // file /tmp/pena-dds-domain-N.lock this process can flock (held until the process ends, so
 // parallel ctest runs, and other checkouts' tests, never share a domain). `offset` only spreads
