@@ -69,5 +69,22 @@ TEST(CliMap, MissingTrajectoryFileGivesOneLineError) {
   EXPECT_NE(run.err.find("missing.tum"), std::string::npos) << run.err;
 }
 
+// `--set slam.NAME=VALUE` reaches the SLAM's options: an unknown name and an invalid value are
+// one-line errors naming them, before any scan is read.
+TEST(CliMap, SlamSettingsAreCheckedByName) {
+  const auto sim = FreshDir("map_slam_set");
+  const PenaRun simulate = RunPena("simulate --scenario office --seed 4 --out " + sim.string());
+  ASSERT_EQ(simulate.exit_code, 0) << simulate.err;
+  const std::string map = "map --quiet --log " + (sim / "ff1" / "sensors.penalog").string() +
+                          " --out " + (sim / "map").string();
+  const PenaRun unknown = RunPena(map + " --set slam.no_such_option=1");
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_EQ(std::count(unknown.err.begin(), unknown.err.end(), '\n'), 1) << unknown.err;
+  EXPECT_NE(unknown.err.find("slam.no_such_option"), std::string::npos) << unknown.err;
+  const PenaRun invalid = RunPena(map + " --set slam.heading_prior_sigma_rad=-1");
+  EXPECT_NE(invalid.exit_code, 0);
+  EXPECT_NE(invalid.err.find("slam.heading_prior_sigma_rad"), std::string::npos) << invalid.err;
+}
+
 }  // namespace
 }  // namespace pena::testing

@@ -231,5 +231,22 @@ TEST(CorrelationScanMatcher, StepThatIsNotWholeCellsIsRejectedWithFieldName) {
       std::invalid_argument);
 }
 
+// The paper's window (60 cm x 36 cm x 3 deg at 6 cm / 0.6 deg) has 5 steps each way in x, 3 in
+// y and 2.5 in heading: its outermost candidates, and only those, are on the edge.
+TEST(CorrelationScanMatcher, OnWindowEdgeMarksOnlyTheOutermostCandidates) {
+  const SearchWindow window;  // the paper's
+  const geometry::Pose2 prior{2.0, 1.0, 0.5};
+  auto at = [&](double dx, double dy, double dtheta) {
+    return OnWindowEdge({prior.x_m + dx, prior.y_m + dy, prior.theta_rad + dtheta}, prior, window);
+  };
+  EXPECT_FALSE(at(0.0, 0.0, 0.0));
+  EXPECT_FALSE(at(0.24, 0.12, 0.0));   // 4 and 2 steps out
+  EXPECT_TRUE(at(0.30, 0.0, 0.0));     // 5 steps: the last in x
+  EXPECT_TRUE(at(-0.30, 0.0, 0.0));
+  EXPECT_TRUE(at(0.0, -0.18, 0.0));    // 3 steps: the last in y
+  EXPECT_FALSE(at(0.0, 0.0, 0.0105));  // one heading step
+  EXPECT_TRUE(at(0.0, 0.0, -0.021));   // two: the last in heading
+}
+
 }  // namespace
 }  // namespace pena::scan_matching

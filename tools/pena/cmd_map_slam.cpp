@@ -4,6 +4,9 @@
 // SLAM's poses in a second pass. DIR/trajectory.tum holds those poses.
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "cli_support.hpp"
 #include "cmd_map.hpp"
@@ -14,9 +17,65 @@
 
 namespace pena::cli::map {
 
+namespace {
+
+constexpr const char* kSlamPrefix = "slam.";
+
+bool IsSlamSetting(const std::string& text) { return text.rfind(kSlamPrefix, 0) == 0; }
+
+// The SLAM options `--set slam.NAME=VALUE` may change (names as in SlamOptions).
+SettingTargets SlamTargets(slam::SlamOptions& o) {
+  SettingTargets targets;
+  targets.doubles = {{"keyframe_distance_m", &o.keyframe_distance_m},
+                     {"keyframe_angle_rad", &o.keyframe_angle_rad},
+                     {"loop_min_path_m", &o.loop_min_path_m},
+                     {"submap_radius_m", &o.submap_radius_m},
+                     {"loop_window_m", &o.loop_window_m},
+                     {"loop_window_per_m", &o.loop_window_per_m},
+                     {"loop_window_max_m", &o.loop_window_max_m},
+                     {"loop_min_score", &o.loop_min_score},
+                     {"degenerate_eigen_ratio", &o.degenerate_eigen_ratio},
+                     {"odometry_sigma_m", &o.odometry_sigma_m},
+                     {"odometry_sigma_per_m", &o.odometry_sigma_per_m},
+                     {"odometry_sigma_rad", &o.odometry_sigma_rad},
+                     {"odometry_sigma_rad_per_m", &o.odometry_sigma_rad_per_m},
+                     {"loop_sigma_m", &o.loop_sigma_m},
+                     {"loop_sigma_rad", &o.loop_sigma_rad},
+                     {"max_loop_chi2", &o.max_loop_chi2},
+                     {"heading_prior_sigma_rad", &o.heading_prior_sigma_rad}};
+  targets.ints = {{"submap_keyframes", &o.submap_keyframes},
+                  {"loop_check_every", &o.loop_check_every}};
+  targets.flags = {{"confirm_reference", &o.confirm_reference},
+                   {"local_matching", &o.local_matching},
+                   {"reject_window_edge", &o.reject_window_edge}};
+  return targets;
+}
+
+}  // namespace
+
 odometry::LaserOdometryOptions OdometryOptionsOf(const MapArgs& args) {
+  std::vector<std::string> settings;
+  for (const std::string& text : args.odometry_settings) {
+    if (!IsSlamSetting(text)) settings.push_back(text);
+  }
   odometry::LaserOdometryOptions options;
-  ApplyOdometrySettings(args.odometry_settings, options);
+  ApplyOdometrySettings(settings, options);
+  return options;
+}
+
+slam::SlamOptions SlamOptionsOf(const MapArgs& args) {
+  slam::SlamOptions options;
+  const SettingTargets targets = SlamTargets(options);
+  for (const std::string& text : args.odometry_settings) {
+    if (!IsSlamSetting(text)) continue;
+    Setting setting = ParseSetting(text);
+    setting.name.erase(0, std::string(kSlamPrefix).size());
+    if (!ApplySetting(targets, setting)) {
+      throw std::runtime_error("--set: unknown option 'slam." + setting.name +
+                               "' (see docs/slam.md)");
+    }
+  }
+  slam::ValidateSlamOptions(options);
   return options;
 }
 
@@ -33,10 +92,10 @@ std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run
     }
   }
   const double stamp_s = read_ahead.empty() ? 0.0 : sensors::StampOf(read_ahead.front());
-  odometry::LaserOdometry chain(OdometryOptionsOf(args),
-                                source->description().kind.value_or(sensors::EntityKind::kRobot),
+  const sensors::EntityKind kind = source->description().kind.value_or(sensors::EntityKind::kRobot);
+  odometry::LaserOdometry chain(OdometryOptionsOf(args), kind,
                                 StartPoseOf(read_ahead, *source).world_from_body, stamp_s);
-  slam::KeyframeSlam slam;
+  slam::KeyframeSlam slam(SlamOptionsOf(args));
   ProgressLine progress(!args.quiet);
   auto feed = [&](const sensors::SensorRecord& record) {
     const auto estimate = chain.Add(record);

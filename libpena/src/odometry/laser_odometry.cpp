@@ -219,7 +219,7 @@ scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Poin
     // A low score or a best pose on the window's edge (the optimum may lie outside): search
     // again at once with a grown window, up to the wide one, before giving up on this scan.
     const bool retry = result.score < options.min_score ||
-                       internal::OnWindowEdge(result.grid_pose, prior, searched);
+                       scan_matching::OnWindowEdge(result.grid_pose, prior, searched);
     if (!retry || !window.Grow()) return result;
   }
 }

@@ -29,8 +29,4 @@ class WindowScale {
   double factor_ = 1.0;
 };
 
-// True if the grid pose is at the outermost candidates of the window in some dimension.
-bool OnWindowEdge(const geometry::Pose2& grid_pose, const geometry::Pose2& prior,
-                  const scan_matching::SearchWindow& window);
-
 }  // namespace pena::odometry::internal

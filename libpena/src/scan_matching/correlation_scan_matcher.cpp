@@ -130,4 +130,16 @@ double CorrelationScanMatcher::Score(const Points2& scan,
   return static_cast<double>(hits) / static_cast<double>(scan.size());
 }
 
+bool OnWindowEdge(const geometry::Pose2& grid_pose, const geometry::Pose2& prior,
+                  const SearchWindow& window) {
+  auto edge = [](double offset, double size, double step) {
+    const double steps_per_side = std::floor(0.5 * size / step + 1e-9);
+    return steps_per_side > 0.0 && std::abs(offset) >= (steps_per_side - 0.5) * step;
+  };
+  return edge(grid_pose.x_m - prior.x_m, window.size_x_m, window.step_xy_m) ||
+         edge(grid_pose.y_m - prior.y_m, window.size_y_m, window.step_xy_m) ||
+         edge(geometry::NormalizeAngle(grid_pose.theta_rad - prior.theta_rad), window.size_theta_rad,
+              window.step_theta_rad);
+}
+
 }  // namespace pena::scan_matching

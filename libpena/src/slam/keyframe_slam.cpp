@@ -71,6 +71,11 @@ struct KeyframeSlam::Impl {
                     false};
       graph.AddEdge(edge);
     }
+    if (options.heading_prior_sigma_rad > 0.0) {
+      const double sigma = options.heading_prior_sigma_rad;
+      graph.AddHeadingPrior({static_cast<int>(graph.nodes().size()) - 1,
+                             world_from_odometry.theta_rad, 1.0 / (sigma * sigma)});
+    }
     keyframes.push_back(std::move(keyframe));
     ++counts.keyframes;
     const int index = static_cast<int>(keyframes.size()) - 1;

@@ -40,9 +40,16 @@ void EdgeJacobians(const Pose2& from, const Pose2& to, const Pose2& z, Eigen::Ma
   j_to(2, 2) = 1.0;
 }
 
-// The normal equations H dx = -b of all edges at the current estimate, node 0 pinned.
+double HeadingError(const std::vector<Pose2>& nodes, const HeadingPrior& prior) {
+  return geometry::NormalizeAngle(nodes[static_cast<std::size_t>(prior.node)].theta_rad -
+                                  prior.theta_rad);
+}
+
+// The normal equations H dx = -b of all edges and heading priors at the current estimate, node 0
+// pinned.
 void Linearize(const std::vector<Pose2>& nodes, const std::vector<PoseEdge>& edges,
-               Eigen::SparseMatrix<double>& h, Eigen::VectorXd& b) {
+               const std::vector<HeadingPrior>& heading_priors, Eigen::SparseMatrix<double>& h,
+               Eigen::VectorXd& b) {
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(edges.size() * 36 + 3);
   for (const PoseEdge& edge : edges) {
@@ -66,6 +73,11 @@ void Linearize(const std::vector<Pose2>& nodes, const std::vector<PoseEdge>& edg
         }
       }
     }
+  }
+  for (const HeadingPrior& prior : heading_priors) {
+    const int row = 3 * prior.node + 2;  // d error / d theta = 1
+    b(row) += prior.information * HeadingError(nodes, prior);
+    triplets.emplace_back(row, row, prior.information);
   }
   for (int r = 0; r < 3; ++r) triplets.emplace_back(r, r, kAnchorWeight);
   h.setFromTriplets(triplets.begin(), triplets.end());
@@ -98,8 +110,31 @@ void PoseGraph::AddEdge(const PoseEdge& edge) {
   edges_.push_back(edge);
 }
 
+void PoseGraph::AddHeadingPrior(const HeadingPrior& prior) {
+  if (prior.node < 0 || prior.node >= static_cast<int>(nodes_.size())) {
+    throw std::invalid_argument("pose graph: heading prior on node " + std::to_string(prior.node) +
+                                ", which does not exist");
+  }
+  if (!std::isfinite(prior.information) || !(prior.information > 0.0) ||
+      !std::isfinite(prior.theta_rad)) {
+    throw std::invalid_argument("pose graph: heading prior on node " + std::to_string(prior.node) +
+                                " needs a finite heading and an information > 0");
+  }
+  heading_priors_.push_back(prior);
+}
+
 void PoseGraph::RemoveEdge(std::size_t index) {
   if (index < edges_.size()) edges_.erase(edges_.begin() + static_cast<std::ptrdiff_t>(index));
+}
+
+double PoseGraph::TotalChi2() const {
+  double chi2 = 0.0;
+  for (const PoseEdge& edge : edges_) chi2 += EdgeChi2(edge);
+  for (const HeadingPrior& prior : heading_priors_) {
+    const double e = HeadingError(nodes_, prior);
+    chi2 += prior.information * e * e;
+  }
+  return chi2;
 }
 
 double PoseGraph::EdgeChi2(const PoseEdge& edge) const {
@@ -111,7 +146,7 @@ double PoseGraph::EdgeChi2(const PoseEdge& edge) const {
 OptimizeResult PoseGraph::Optimize(int max_iterations) {
   OptimizeResult result;
   const int n = static_cast<int>(nodes_.size());
-  for (const PoseEdge& edge : edges_) result.initial_chi2 += EdgeChi2(edge);
+  result.initial_chi2 = TotalChi2();
   result.final_chi2 = result.initial_chi2;
   if (n < 2 || edges_.empty()) {
     result.solved = true;
@@ -120,7 +155,7 @@ OptimizeResult PoseGraph::Optimize(int max_iterations) {
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     Eigen::SparseMatrix<double> h(3 * n, 3 * n);
     Eigen::VectorXd b = Eigen::VectorXd::Zero(3 * n);
-    Linearize(nodes_, edges_, h, b);
+    Linearize(nodes_, edges_, heading_priors_, h, b);
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(h);
     if (solver.info() != Eigen::Success) return result;
     const Eigen::VectorXd dx = solver.solve(-b);
@@ -135,8 +170,7 @@ OptimizeResult PoseGraph::Optimize(int max_iterations) {
     if (dx.lpNorm<Eigen::Infinity>() < 1e-6) break;
   }
   result.solved = true;
-  result.final_chi2 = 0.0;
-  for (const PoseEdge& edge : edges_) result.final_chi2 += EdgeChi2(edge);
+  result.final_chi2 = TotalChi2();
   return result;
 }
 

@@ -53,6 +53,7 @@ void ValidateSlamOptions(const SlamOptions& o) {
   RequirePositive(o.loop_sigma_m, "loop_sigma_m", "m");
   RequirePositive(o.loop_sigma_rad, "loop_sigma_rad", "rad");
   RequirePositive(o.max_loop_chi2, "max_loop_chi2", "(chi2)");
+  RequireNonNegative(o.heading_prior_sigma_rad, "heading_prior_sigma_rad", "rad");
 }
 
 }  // namespace pena::slam

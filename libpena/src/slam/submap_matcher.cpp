@@ -114,6 +114,12 @@ std::optional<LoopMatch> SubmapMatcher::Match(const std::vector<Keyframe>& keyfr
   const scan_matching::MatchResult result =
       matcher_->MatchBranchAndBound(scan, centre_from_prior, window);
   if (!result.converged || result.score < options_.loop_min_score) return std::nullopt;
+  // The best pose on the window's edge: the optimum may lie outside, and the edge pose is then
+  // only the best of a cut-off slope (loop170 seed 1 closed its loop 3.4 m off this way).
+  if (options_.reject_window_edge &&
+      scan_matching::OnWindowEdge(result.grid_pose, centre_from_prior, window)) {
+    return std::nullopt;
+  }
   if (!WellConditioned(result.information, options_.degenerate_eigen_ratio)) return std::nullopt;
   return LoopMatch{result.reference_from_scan, result.score};
 }

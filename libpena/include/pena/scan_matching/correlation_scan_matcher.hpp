@@ -46,6 +46,11 @@ struct SearchWindow {
   double step_theta_rad = 0.010471975511965976;  // 0.6 deg
 };
 
+// True if `grid_pose` (MatchResult::grid_pose) is among the outermost candidates of `window`
+// around `prior` in x, y or heading: the optimum may lie outside, so the match is not evidence.
+bool OnWindowEdge(const geometry::Pose2& grid_pose, const geometry::Pose2& prior,
+                  const SearchWindow& window);
+
 // What a match found; failure is data (converged = false), not an exception.
 struct MatchResult {
   bool converged = false;                 // at least one scan point hit

@@ -19,6 +19,14 @@ struct PoseEdge {
   bool robust = false;  // loop closures: Cauchy-weighted so a wrong one cannot bend the graph
 };
 
+// An absolute heading measured at one node (a compass-bounded heading), with its information
+// (1 / sigma^2, rad^-2). Positions stay free: it only keeps the graph from bending.
+struct HeadingPrior {
+  int node = 0;
+  double theta_rad = 0.0;
+  double information = 0.0;
+};
+
 // What an optimisation did; failure is data.
 struct OptimizeResult {
   bool solved = false;       // every linear solve succeeded
@@ -34,6 +42,9 @@ class PoseGraph {
   int AddNode(const geometry::Pose2& world_from_node);
   // Adds an edge; throws std::invalid_argument for an unknown node or equal ends.
   void AddEdge(const PoseEdge& edge);
+  // Adds an absolute heading; throws std::invalid_argument for an unknown node or an
+  // information that is not finite and > 0.
+  void AddHeadingPrior(const HeadingPrior& prior);
 
   // Gauss-Newton over all nodes but node 0, at most `max_iterations` rounds, stopping when the
   // largest update is below 1e-6 (m or rad).
@@ -41,15 +52,19 @@ class PoseGraph {
 
   // Squared Mahalanobis error of one edge at the current estimate.
   double EdgeChi2(const PoseEdge& edge) const;
+  // Of every edge and heading prior.
+  double TotalChi2() const;
 
   const std::vector<geometry::Pose2>& nodes() const { return nodes_; }
   const std::vector<PoseEdge>& edges() const { return edges_; }
+  const std::vector<HeadingPrior>& heading_priors() const { return heading_priors_; }
   // Removes the edge at `index` (a rejected loop closure).
   void RemoveEdge(std::size_t index);
 
  private:
   std::vector<geometry::Pose2> nodes_;
   std::vector<PoseEdge> edges_;
+  std::vector<HeadingPrior> heading_priors_;
 };
 
 // The error of `edge` between `from` and `to`: Between(from, to) relative to the measurement,

@@ -28,6 +28,11 @@ struct SlamOptions {
   // Off by default: on simulated seeds 1-2 it helped loop170 seed 1 and hurt the others.
   bool confirm_reference = false;
   double loop_min_score = 0.6;       // eq. 2 score a closure needs
+  // Refuse a closure whose best grid pose lies on the search window's edge (the optimum may lie
+  // outside). Off: measured on 16 simulated missions and the Freiburg logs, it removed wrong
+  // corridor closures (loop170 seed 7, office seed 6, aces) but also right ones (intel; a
+  // drifted heading caught at the window's edge), docs/slam.md, session 19.
+  bool reject_window_edge = false;
   double degenerate_eigen_ratio = 0.05;  // translation eigenvalue ratio below: corridor, refused
   int loop_check_every = 1;          // try a closure at every n-th keyframe
   // Scan-to-map refinement (Cartographer's local SLAM, here as graph edges): a keyframe without a
@@ -48,6 +53,13 @@ struct SlamOptions {
   double odometry_sigma_rad_per_m = 0.01;
   double loop_sigma_m = 0.05;
   double loop_sigma_rad = 0.01;
+  // Absolute heading (0: off). A person's odometry heading is held to magnetic north by the
+  // dead reckoning's compass, so it does not drift as a robot's does. With this > 0 every
+  // keyframe keeps its odometry heading with this sigma, and a loop closure moves positions
+  // instead of rotating whole stretches of the walk. Off: on 16 simulated missions it helped the
+  // loops a closure had rotated (loop170 seeds 1, 4, 7, 8) and hurt office runs whose odometry
+  // heading is itself 1-2 deg off (office seeds 4, 5, 7), docs/slam.md, session 19.
+  double heading_prior_sigma_rad = 0.0;
   int optimize_iterations = 10;
   double max_loop_chi2 = 25.0;  // a closure disagreeing more than this after optimising is dropped
 };
