@@ -155,6 +155,11 @@ struct OffStart {
   geometry::Pose2 estimate;
   geometry::Pose2 truth;
   bool relocalised = false;
+  double sum_squared_m2 = 0.0;  // position error from the relocalisation on
+  int scans_since_relocalised = 0;
+  double RmsSinceRelocalisedM() const {
+    return scans_since_relocalised > 0 ? std::sqrt(sum_squared_m2 / scans_since_relocalised) : 1e9;
+  }
 };
 OffStart RunFromWrongStart(int relocalise_after_rounds, const geometry::Pose2& offset, double start_stamp_s,
                            int scans) {
@@ -177,6 +182,12 @@ OffStart RunFromWrongStart(int relocalise_after_rounds, const geometry::Pose2& o
     --scans;
     out.estimate = pose->map_from_body;
     out.relocalised = out.relocalised || pose->status == MapStatus::kRelocalised;
+    if (out.relocalised) {
+      const double dx = out.estimate.x_m - out.truth.x_m;
+      const double dy = out.estimate.y_m - out.truth.y_m;
+      out.sum_squared_m2 += dx * dx + dy * dy;
+      ++out.scans_since_relocalised;
+    }
   }
   return out;
 }
@@ -184,7 +195,9 @@ OffStart RunFromWrongStart(int relocalise_after_rounds, const geometry::Pose2& o
 // An entity put 3 m off across the mapped corridor and 30 deg off in heading is beyond the plan
 // window (3.2 m x 20 deg at most): the plan rounds fail for good. With relocalisation the whole
 // plan is searched after a few lost rounds and the walk east along the main corridor (office
-// seed 1 from 152 s) finds it again.
+// seed 1 from 152 s) finds it again, and keeps it: judged over every scan from the relocalisation
+// to the end, not at the last one alone (along the east end of the corridor, where the plan's
+// wall is drawn 0.3 m off, single scans are 0.2-0.6 m ahead with or without the pace check).
 TEST(LocalisationChain, ALostEntityInAMappedCorridorIsRelocalised) {
   const geometry::Pose2 offset{0.0, 3.0, 30.0 * kDeg};
   const OffStart lost = RunFromWrongStart(0, offset, 152.0, 150);
@@ -192,7 +205,9 @@ TEST(LocalisationChain, ALostEntityInAMappedCorridorIsRelocalised) {
   EXPECT_FALSE(lost.relocalised);
   const OffStart found = RunFromWrongStart(3, offset, 152.0, 150);
   EXPECT_TRUE(found.relocalised);
-  EXPECT_NEAR(found.estimate.x_m, found.truth.x_m, 0.3);
+  EXPECT_GT(found.scans_since_relocalised, 50);
+  EXPECT_LT(found.RmsSinceRelocalisedM(), 0.3);
+  EXPECT_NEAR(found.estimate.x_m, found.truth.x_m, 0.6);
   EXPECT_NEAR(found.estimate.y_m, found.truth.y_m, 0.3);
   EXPECT_NEAR(geometry::NormalizeAngle(found.estimate.theta_rad - found.truth.theta_rad), 0.0, 3.0 * kDeg);
 }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -182,6 +183,59 @@ waypoint ff1 20 1
   const double backward_m = AlongTrackJitterM(person, Replay(person, backward));
   EXPECT_LT(backward_m, 0.9 * matched_m) << "backward only " << backward_m << " m, without " << matched_m << " m";
   EXPECT_GT(backward_m, slide_m) << "backward only " << backward_m << " m, both ways " << slide_m << " m";
+}
+
+// The pace check (pace_check_*, on by default with spread strides): in a 60 m corridor whose only
+// returns across it are the walker's own floor hits, matches slide back towards the keyframes;
+// the walk's pace over the last 4 m holds them to the dead reckoning along the corridor.
+TEST(LaserOdometry, PaceCheckHoldsACorridorSlideBack) {
+  const sim::Scenario scenario = sim::ParseScenario(R"(pena-scenario 1
+name corridor
+wall -100 0 100 0
+wall -100 2 100 2
+entity ff1 human 0 1 0 speed=1
+waypoint ff1 60 1
+)", "test:corridor-pace");
+  const sim::EntityRecording person =
+      sim::Simulator{sim::SimulationOptions{}}.Run(scenario).entities.front();
+  LaserOdometryOptions off;
+  off.pace_check_tolerance = 0.0;
+  const Replayed checked = Replay(person);
+  const Replayed unchecked = Replay(person, off);
+  auto along_rms_m = [&](const Replayed& run) {
+    double sum_m2 = 0.0;
+    for (std::size_t i = 0; i < run.estimates.size(); ++i) {
+      const double e = run.estimates[i].world_from_body.x_m - person.truth[i].world_from_body.x_m;
+      sum_m2 += e * e;
+    }
+    return std::sqrt(sum_m2 / static_cast<double>(run.estimates.size()));
+  };
+  EXPECT_GT(checked.counts.pace_held, 0);
+  EXPECT_EQ(unchecked.counts.pace_held, 0);
+  EXPECT_LT(along_rms_m(checked), along_rms_m(unchecked))
+      << "with " << along_rms_m(checked) << " m, without " << along_rms_m(unchecked) << " m";
+  std::printf("[ figures  ] corridor along-track RMS: pace check %.3f m, without %.3f m (%ld held)\n",
+              along_rms_m(checked), along_rms_m(unchecked), checked.counts.pace_held);
+}
+
+TEST(LaserOdometry, RefusesAPaceCheckOutOfRangeNamingTheField) {
+  const auto refused = [](LaserOdometryOptions options, const std::string& field) {
+    try {
+      LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
+      ADD_FAILURE() << "accepted " << field;
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
+    }
+  };
+  LaserOdometryOptions options;
+  options.pace_check_tolerance = 1.0;
+  refused(options, "pace_check_tolerance");
+  options = {};
+  options.pace_check_window_m = 0.0;
+  refused(options, "pace_check_window_m");
+  options = {};
+  options.pace_check_weak_ratio = -0.1;
+  refused(options, "pace_check_weak_ratio");
 }
 
 TEST(LaserOdometry, BackwardOnlySlideIsAModeOfTheSlideCheck) {

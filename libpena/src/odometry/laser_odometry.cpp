@@ -148,7 +148,24 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   velocity = geometry::Between(previous_estimate, estimate);
   previous_estimate = estimate;
   frozen_odometry.Estimated(estimate);
+  if (motion.last_pose()) pace_check.Record(*motion.last_pose(), estimate);
   return out;
+}
+
+void LaserOdometry::Impl::CheckPace(const Eigen::Matrix3d& information,
+                                    const geometry::Pose2& prior) {
+  if (!pace_check.enabled() || !motion.last_pose()) return;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(information.topLeftCorner<2, 2>());
+  if (!(solver.eigenvalues()(0) < options.pace_check_weak_ratio * solver.eigenvalues()(1))) return;
+  const std::optional<Eigen::Vector2d> along =
+      pace_check.FallsBehind(*motion.last_pose(), estimate, prior);
+  if (!along) return;
+  const Eigen::Vector2d to_prior_m(prior.x_m - estimate.x_m, prior.y_m - estimate.y_m);
+  const double shift_m = along->dot(to_prior_m);
+  estimate.x_m += along->x() * shift_m;
+  estimate.y_m += along->y() * shift_m;
+  match_weak_direction = along;  // as a degenerate match's: the covariance takes the prior's there
+  ++counts.pace_held;
 }
 
 geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
@@ -275,6 +292,7 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
   const Eigen::Vector2d travel_m(prior.x_m - previous_estimate.x_m, prior.y_m - previous_estimate.y_m);
   match_weak_direction =
       KeepPriorAlongWeakDirection(result.information, options, prior, travel_m, estimate);
+  if (!match_weak_direction) CheckPace(result.information, prior);
   const bool degenerate = match_weak_direction.has_value();
   out.status = degenerate ? MatchStatus::kDegenerate : MatchStatus::kMatched;
   ++(degenerate ? counts.degenerate : counts.matched);

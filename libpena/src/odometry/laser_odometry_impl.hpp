@@ -13,6 +13,7 @@
 #include "gate_confirmation.hpp"
 #include "local_map.hpp"
 #include "motion_tracker.hpp"
+#include "pace_check.hpp"
 #include "pena/odometry/laser_odometry.hpp"
 #include "pena/scan_matching/correlation_scan_matcher.hpp"
 #include "search_window.hpp"
@@ -55,7 +56,12 @@ struct LaserOdometry::Impl {
             mode == MotionPrior::kOdometry ? checked.frozen_odometry_min_turn_rad : 0.0,
             mode == MotionPrior::kOdometry ? checked.frozen_odometry_min_move_m : 0.0),
         walker_fixed(checked.walker_fixed_points),  // checked even when off
-        drop_walker_fixed(checked.drop_walker_fixed_points && mode == MotionPrior::kDeadReckoning) {}
+        drop_walker_fixed(checked.drop_walker_fixed_points && mode == MotionPrior::kDeadReckoning),
+        pace_check({mode == MotionPrior::kDeadReckoning &&
+                            checked.dead_reckoning.stride_interpolation.enabled
+                        ? checked.pace_check_tolerance
+                        : 0.0,
+                    checked.pace_check_window_m}) {}
 
   LaserOdometryOptions options;
   internal::MotionTracker motion;
@@ -124,6 +130,9 @@ struct LaserOdometry::Impl {
   bool drop_walker_fixed;
   scan_matching::Points2 previous_points;
   geometry::Pose2 smooth_increment;
+  // People with spread strides (pace_check_*): the raw stream moves in whole strides, a pace
+  // over a few metres is off by up to one.
+  internal::PaceCheck pace_check;
   OdometryCounts counts;
 
   OdometryEstimate AddScan(const sensors::LaserScan& scan);
@@ -145,6 +154,8 @@ struct LaserOdometry::Impl {
   std::optional<Eigen::Vector2d> WeakDirectionInMotionFrame(
       const std::optional<geometry::Pose2>& motion_pose) const;
   void Match(const scan_matching::Points2& points, OdometryEstimate& out);
+  // pace_check_*: a weakly constrained match that fell behind the walk keeps the prior along it.
+  void CheckPace(const Eigen::Matrix3d& information, const geometry::Pose2& prior);
   scan_matching::MatchResult Search(const scan_matching::Points2& points,
                                     const geometry::Pose2& prior, OdometryEstimate& out);
   // local_map_place_fill_below_score: `first` (searched from `window_before`) against the

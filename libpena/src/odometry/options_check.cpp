@@ -1,5 +1,6 @@
 #include "options_check.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -52,6 +53,12 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           o.frozen_odometry_min_move_m);
   Require(o.degenerate_eigen_ratio >= 0.0 && o.degenerate_eigen_ratio < 1.0,
           "degenerate_eigen_ratio", "in [0, 1)", o.degenerate_eigen_ratio);
+  Require(o.pace_check_tolerance >= 0.0 && o.pace_check_tolerance < 1.0, "pace_check_tolerance",
+          "in [0, 1) (0: off)", o.pace_check_tolerance);
+  Require(o.pace_check_window_m > 0.0 && std::isfinite(o.pace_check_window_m),
+          "pace_check_window_m", "> 0 m and finite", o.pace_check_window_m);
+  Require(o.pace_check_weak_ratio >= 0.0 && o.pace_check_weak_ratio <= 1.0,
+          "pace_check_weak_ratio", "in [0, 1]", o.pace_check_weak_ratio);
   Require(o.degenerate_slide_ratio >= 0.0 && o.degenerate_slide_ratio < 1.0,
           "degenerate_slide_ratio", "in [0, 1) (0: off)", o.degenerate_slide_ratio);
   Require(o.degenerate_max_slide_m > 0.0, "degenerate_max_slide_m", "> 0 m",

@@ -134,6 +134,16 @@ struct LaserOdometryOptions {
   // Degenerate places: translation eigenvalue ratio of J^T J below this means a corridor-like
   // direction; that component is taken from the prior.
   double degenerate_eigen_ratio = 0.05;
+  // People with spread strides only (dead reckoning, dead_reckoning.stride_interpolation on): the
+  // pace check (docs/odometry.md, session 19). A weakly constrained match (translation
+  // eigenvalue ratio below pace_check_weak_ratio) whose position has fallen behind the dead
+  // reckoning's progress over the last pace_check_window_m walked by more than
+  // pace_check_tolerance of it (and by more than the prior has) keeps the prior's component
+  // along the walk, as a degenerate match does. It stops the corridor slides of floor lines that
+  // move with the walker. 0 turns it off.
+  double pace_check_tolerance = 0.1;
+  double pace_check_window_m = 4.0;
+  double pace_check_weak_ratio = 0.2;
   // Weakly constrained places (ratio below degenerate_slide_ratio: a corridor whose only
   // along-track features are a few door frames, or floor hits across it that move with the
   // person): a match that slid more than degenerate_max_slide_m along the weak direction away from
@@ -279,6 +289,7 @@ struct OdometryCounts {
   long gated = 0;            // matches outside the prior-consistency gate (not made keyframes)
   long stale = 0;            // scans repeating an earlier scan (not made keyframes)
   long turn_held = 0;        // poor matches in fast turns not made keyframes (keyframe_turn_*)
+  long pace_held = 0;        // matches that kept the prior along the walk (pace_check_*)
   long walker_fixed_dropped = 0;  // returns dropped as moving with the body (drop_walker_fixed_points)
   long records_ignored = 0;  // out of order or not usable (see dead reckoning counts too)
 };
