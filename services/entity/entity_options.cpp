@@ -19,16 +19,6 @@ odometry::MotionPrior ParseMotionPrior(const std::string& text) {
                               "odometry or none, got '" + text + "'");
 }
 
-}  // namespace
-
-pipeline::EntityPipelineOptions ServicePipelineDefaults() {
-  pipeline::EntityPipelineOptions options;
-  options.odometry.dead_reckoning.stride_interpolation.enabled = false;
-  return options;
-}
-
-namespace {
-
 void ApplyPipeline(const config::PipelineConfig& config, pipeline::EntityPipelineOptions& out) {
   if (config.has_motion_prior()) out.odometry.motion_prior = ParseMotionPrior(config.motion_prior());
   if (config.has_match_scans()) out.odometry.match_scans = config.match_scans();

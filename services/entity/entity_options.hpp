@@ -15,13 +15,6 @@
 
 namespace pena::services {
 
-// libpena's chain options with the service's own defaults: a person's strides are not spread
-// over their scans (pipeline.spread_strides false). Spread, the team demo's map and errors
-// improve on seeds 1-3, but FusionProcess.CorrectionsHalveTheErrorOfAnEntityWhoseHeadingIsDisturbed
-// fails: a 1.7 m corridor slide of the odometry that the fusion's 1.2 m correction window cannot
-// take back (docs/services.md). The offline tools spread them.
-pipeline::EntityPipelineOptions ServicePipelineDefaults();
-
 struct EntityServiceOptions {
   std::filesystem::path input;        // native log, CARMEN log, or "dds" (kLiveInput)
   std::filesystem::path plan;         // a priori plan (map localisation); empty: none
@@ -47,7 +40,10 @@ struct EntityServiceOptions {
   // input "dds": the live sensor topics (entity_id required; live.entity_id is set from it).
   LiveSensorOptions live;
   io::ReadOptions read;
-  pipeline::EntityPipelineOptions pipeline = ServicePipelineDefaults();
+  // libpena's defaults: a person's strides are spread over their scans (pipeline.spread_strides,
+  // on since session 19, when the odometry's pace check removed the corridor slide that kept it
+  // off; docs/services.md, "Stride spreading in the service").
+  pipeline::EntityPipelineOptions pipeline;
   DdsOptions dds;
   std::string log_level = "info";
   std::filesystem::path log_file;

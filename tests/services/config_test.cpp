@@ -79,10 +79,14 @@ TEST(ConfigLoader, BadValuesAreNamed) {
   EXPECT_THROW(LoadTextConfig<config::EntityConfig>("/nonexistent/entity.conf"), io::InputError);
 }
 
-TEST(ConfigLoader, StrideSpreadingIsOffByDefaultAndItsHoldIsChecked) {
+// On by default since session 19 (docs/services.md, "Stride spreading in the service").
+TEST(ConfigLoader, StrideSpreadingIsOnByDefaultCanBeTurnedOffAndItsHoldIsChecked) {
   const auto path = Write("spread.conf", "input: \"x\"\n");
   EntityServiceOptions options =
       EntityOptionsFromConfig(LoadTextConfig<config::EntityConfig>(path), path);
+  EXPECT_TRUE(options.pipeline.odometry.dead_reckoning.stride_interpolation.enabled);
+  const auto off = Write("off.conf", "input: \"x\"\npipeline { spread_strides: false }\n");
+  options = EntityOptionsFromConfig(LoadTextConfig<config::EntityConfig>(off), off);
   EXPECT_FALSE(options.pipeline.odometry.dead_reckoning.stride_interpolation.enabled);
   const auto on = Write("on.conf", "input: \"x\"\npipeline { spread_strides: true stride_hold_s: 0 }\n");
   options = EntityOptionsFromConfig(LoadTextConfig<config::EntityConfig>(on), on);

@@ -86,7 +86,10 @@ TEST(FusionProcess, CorrectionsHalveTheErrorOfAnEntityWhoseHeadingIsDisturbed) {
   const double without_m = Rmse(run / "fusion" / "poses" / "ff1_odom.tum", truth);
   std::printf("[ figures  ] ff1 (disturbed heading): RMS position error %.3f m with corrections, "
               "%.3f m without\n", with_m, without_m);
-  EXPECT_GT(without_m, 0.5) << "the disturbance should make the odometry drift";
+  // The disturbance must make the odometry drift for halving to mean anything. With the strides
+  // spread and the pace check (session 19) the odometry alone drifts 0.40 m here (0.91 m with
+  // the strides at their reports); corrections bring it to 0.15 m.
+  EXPECT_GT(without_m, 0.3) << "the disturbance should make the odometry drift";
   EXPECT_LE(with_m, 0.5 * without_m);
 }
 
