@@ -29,9 +29,10 @@ struct SlamOptions {
   bool confirm_reference = false;
   double loop_min_score = 0.6;       // eq. 2 score a closure needs
   // Refuse a closure whose best grid pose lies on the search window's edge (the optimum may lie
-  // outside). Off: measured on 16 simulated missions and the Freiburg logs, it removed wrong
-  // corridor closures (loop170 seed 7, office seed 6, aces) but also right ones (intel; a
-  // drifted heading caught at the window's edge), docs/slam.md, session 19.
+  // outside). Off here, on for people in `pena map`: it removes wrong corridor closures (office
+  // seed 6: 2.68 -> 0.12 m SLAM RMSE) but also right ones where a drifted heading is caught at
+  // the window's edge, which a robot's wheel odometry has and a person's compass prevents
+  // (intel's std 0.030 -> 0.114 m), docs/slam.md, session 19.
   bool reject_window_edge = false;
   double degenerate_eigen_ratio = 0.05;  // translation eigenvalue ratio below: corridor, refused
   int loop_check_every = 1;          // try a closure at every n-th keyframe
