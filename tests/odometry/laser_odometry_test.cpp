@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <string>
 
 #include "pena/sim/scenario.hpp"
 #include "pena/sim/simulator.hpp"
@@ -105,18 +106,22 @@ TEST(LaserOdometry, CarriesOnThroughBadInput) {
   EXPECT_EQ(odometry.counts().no_points, 2);
 }
 
+// One entity walking or driving from x 0 to end_x along a 2 m wide, 200 m long corridor (its ends
+// beyond the laser's range).
+sim::EntityRecording CorridorRun(const std::string& kind, double speed_m_s, double end_x_m) {
+  const std::string id = kind == "robot" ? "robot1" : "ff1";
+  const sim::Scenario scenario = sim::ParseScenario(
+      "pena-scenario 1\nname corridor\nwall -100 0 100 0\nwall -100 2 100 2\nentity " + id + " " +
+          kind + " 0 1 0 speed=" + std::to_string(speed_m_s) + "\nwaypoint " + id + " " +
+          std::to_string(end_x_m) + " 1\n",
+      "test:corridor");
+  return sim::Simulator{sim::SimulationOptions{}}.Run(scenario).entities.front();
+}
+
 // A straight featureless corridor longer than the laser's range: matching cannot see motion
 // along it. The chain must say so and keep the odometry's along-track motion instead of sliding.
 TEST(LaserOdometry, FeaturelessCorridorTakesAlongTrackMotionFromOdometry) {
-  const sim::Scenario scenario = sim::ParseScenario(R"(pena-scenario 1
-name corridor
-wall -100 0 100 0
-wall -100 2 100 2
-entity robot1 robot 0 1 0 speed=0.5
-waypoint robot1 20 1
-)", "test:corridor");
-  const sim::Simulator simulator{sim::SimulationOptions{}};
-  const sim::EntityRecording robot = simulator.Run(scenario).entities.front();
+  const sim::EntityRecording robot = CorridorRun("robot", 0.5, 20.0);
   const Replayed run = Replay(robot);
   long degenerate = 0;
   for (const auto& estimate : run.estimates) {
@@ -150,15 +155,7 @@ double AlongTrackJitterM(const sim::EntityRecording& entity, const Replayed& run
 // pace removes. Floor hits across the corridor move with the person and pull "matched" scans back
 // towards the keyframe; degenerate_slide_ratio catches those.
 TEST(LaserOdometry, PersonInACorridorHasNoStrideSawTooth) {
-  const sim::Scenario scenario = sim::ParseScenario(R"(pena-scenario 1
-name corridor
-wall -100 0 100 0
-wall -100 2 100 2
-entity ff1 human 0 1 0 speed=1
-waypoint ff1 20 1
-)", "test:corridor");
-  const sim::Simulator simulator{sim::SimulationOptions{}};
-  const sim::EntityRecording person = simulator.Run(scenario).entities.front();
+  const sim::EntityRecording person = CorridorRun("human", 1.0, 20.0);
   LaserOdometryOptions at_reports;
   at_reports.match_scans = false;  // the default: the position moves at stride reports only
   LaserOdometryOptions prior_only = at_reports;
@@ -189,15 +186,7 @@ waypoint ff1 20 1
 // returns across it are the walker's own floor hits, matches slide back towards the keyframes;
 // the walk's pace over the last 4 m holds them to the dead reckoning along the corridor.
 TEST(LaserOdometry, PaceCheckHoldsACorridorSlideBack) {
-  const sim::Scenario scenario = sim::ParseScenario(R"(pena-scenario 1
-name corridor
-wall -100 0 100 0
-wall -100 2 100 2
-entity ff1 human 0 1 0 speed=1
-waypoint ff1 60 1
-)", "test:corridor-pace");
-  const sim::EntityRecording person =
-      sim::Simulator{sim::SimulationOptions{}}.Run(scenario).entities.front();
+  const sim::EntityRecording person = CorridorRun("human", 1.0, 60.0);
   LaserOdometryOptions off;
   off.pace_check_tolerance = 0.0;
   const Replayed checked = Replay(person);
