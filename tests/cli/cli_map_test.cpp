@@ -70,7 +70,7 @@ TEST(CliMap, MissingTrajectoryFileGivesOneLineError) {
 }
 
 // `--set slam.NAME=VALUE` reaches the SLAM's options: an unknown name and an invalid value are
-// one-line errors naming them, before any scan is read.
+// one-line errors naming them.
 TEST(CliMap, SlamSettingsAreCheckedByName) {
   const auto sim = FreshDir("map_slam_set");
   const PenaRun simulate = RunPena("simulate --scenario office --seed 4 --out " + sim.string());
