@@ -84,6 +84,11 @@ TEST(CliMap, SlamSettingsAreCheckedByName) {
   const PenaRun invalid = RunPena(map + " --set slam.heading_prior_sigma_rad=-1");
   EXPECT_NE(invalid.exit_code, 0);
   EXPECT_NE(invalid.err.find("slam.heading_prior_sigma_rad"), std::string::npos) << invalid.err;
+  // With the poses given the SLAM does not run; the setting is still checked.
+  const PenaRun unused = RunPena(map + " --trajectory " + (sim / "ff1" / "truth.tum").string() +
+                                 " --set slam.no_such_option=1");
+  EXPECT_NE(unused.exit_code, 0);
+  EXPECT_NE(unused.err.find("slam.no_such_option"), std::string::npos) << unused.err;
 }
 
 }  // namespace

@@ -40,6 +40,9 @@ struct MapArgs {
 
 // The odometry options of the chain that gives the poses (defaults changed by --set).
 odometry::LaserOdometryOptions OdometryOptionsOf(const MapArgs& args);
+// The SLAM's options for a log of entities of `kind` (--set slam.NAME=VALUE applied, validated);
+// throws std::runtime_error or std::invalid_argument naming a bad setting.
+slam::SlamOptions SlamOptionsOf(const MapArgs& args, sensors::EntityKind kind);
 
 // What the pass over the log produced.
 struct MapRun {
