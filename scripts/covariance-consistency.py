@@ -18,18 +18,11 @@ and wrong) counts as outside every ellipse and is left out of the mean NEES.
 """
 import csv, math, sys
 
+from tum_poses import read_tum
+
 CHI2_2_95 = 5.991
 CHI2_2_99 = 9.210
 SINGULAR_ERROR_M = 1e-3  # a singular covariance is right only where the error is nil (the start)
-
-def read_tum(path):
-    poses = {}
-    for line in open(path):
-        if line.startswith('#') or not line.strip():
-            continue
-        f = line.split()
-        poses[round(float(f[0]), 3)] = (float(f[1]), float(f[2]), 2 * math.atan2(float(f[6]), float(f[7])))
-    return poses
 
 def wrap(angle):
     return math.atan2(math.sin(angle), math.cos(angle))

@@ -19,15 +19,7 @@ import math
 import os
 import sys
 
-
-def read_tum(path):
-    poses = {}
-    for line in open(path):
-        if line.startswith('#') or not line.strip():
-            continue
-        f = line.split()
-        poses[round(float(f[0]), 3)] = (float(f[1]), float(f[2]), 2 * math.atan2(float(f[6]), float(f[7])))
-    return poses
+from tum_poses import read_tum
 
 
 def plan_box(path):

@@ -11,14 +11,7 @@ Poses are matched to the truth by stamp within 1 ms.
 """
 import math, sys
 
-def read_tum(path):
-    poses = {}
-    for line in open(path):
-        if line.startswith('#') or not line.strip():
-            continue
-        f = line.split()
-        poses[round(float(f[0]), 3)] = (float(f[1]), float(f[2]), 2 * math.atan2(float(f[6]), float(f[7])))
-    return poses
+from tum_poses import read_tum
 
 def relative(a, b):
     dx, dy = b[0] - a[0], b[1] - a[1]
