@@ -1,4 +1,4 @@
-// `pena localise --smooth` as a user runs it: the smoothed trajectory in trajectory.tum, the causal
+// `pena localise` as a user runs it: plan adaptation's outputs, and `--smooth`: the smoothed trajectory in trajectory.tum, the causal
 // one in trajectory-online.tum (byte for byte what a run without the option writes), both scored
 // in summary.json. Accuracy is not asserted here: docs/localisation.md, "Offline smoothing".
 #include <gtest/gtest.h>
@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <string>
 
+#include "pena/io/line_csv.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "run_pena.hpp"
 
@@ -35,6 +36,47 @@ TEST(CliLocalise, SmoothWritesTheSmoothedAndTheCausalTrajectory) {
   EXPECT_NE(summary.find("\"smoothed\": true, \"truth_online\": {"), std::string::npos) << summary;
   EXPECT_EQ(ReadBytes(causal / "summary.json").find("truth_online"), std::string::npos);
   EXPECT_NE(smooth.out.find("causal (trajectory-online.tum)"), std::string::npos) << smooth.out;
+}
+
+// Distance from a segment's midpoint to the nearest of `walls`.
+double MidpointToNearest(const geometry::Segment2& s, const std::vector<io::LineRow>& walls) {
+  const Eigen::Vector2d mid = 0.5 * (s.start_m + s.end_m);
+  double best = 1e9;
+  for (const io::LineRow& w : walls) best = std::min(best, geometry::DistanceToSegment(w.segment, mid));
+  return best;
+}
+
+// The office plan draws some walls 0.3-0.6 m off: the walls pena localise moves must end up
+// nearer the true ones (floorplan.csv), listed in plan-shifts.csv and summary.json.
+TEST(CliLocalise, PlanAdaptationMovesDrawnOffWallsTowardsTheTrueOnes) {
+  const auto mission = FreshDir("loc_adapt_sim");
+  ASSERT_EQ(RunPena("simulate --scenario office --seed 2 --out " + mission.string()).exit_code, 0);
+  const std::string inputs = "localise --quiet --log " + (mission / "ff1" / "sensors.penalog").string() +
+                             " --map " + (mission / "apriori.csv").string();
+  const auto adapted = FreshDir("loc_adapt_out");
+  const PenaRun run = RunPena(inputs + " --out " + adapted.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("plan adaptation: "), std::string::npos) << run.out;
+  const std::vector<io::LineRow> drawn = io::ReadLineCsv(mission / "apriori.csv");
+  const std::vector<io::LineRow> after = io::ReadLineCsv(adapted / "plan-adapted.csv");
+  const std::vector<io::LineRow> walls = io::ReadLineCsv(mission / "floorplan.csv");
+  ASSERT_EQ(after.size(), drawn.size());
+  const std::string shifts = ReadBytes(adapted / "plan-shifts.csv");
+  const long moved = std::count(shifts.begin(), shifts.end(), '\n') - 1;
+  EXPECT_GE(moved, 2) << shifts;
+  long changed = 0;
+  for (std::size_t i = 0; i < drawn.size(); ++i) {
+    if (after[i].segment.start_m == drawn[i].segment.start_m && after[i].segment.end_m == drawn[i].segment.end_m) continue;
+    ++changed;
+    EXPECT_GT(MidpointToNearest(drawn[i].segment, walls), 0.25) << "segment " << i << " was drawn right";
+    EXPECT_LT(MidpointToNearest(after[i].segment, walls), 0.05) << "segment " << i;
+  }
+  EXPECT_EQ(changed, moved);
+  EXPECT_NE(ReadBytes(adapted / "summary.json").find("\"plan_shifts\": [{\"id\": "), std::string::npos);
+  const auto off = FreshDir("loc_adapt_off");
+  ASSERT_EQ(RunPena(inputs + " --out " + off.string() + " --set plan_adaptation.enabled=0").exit_code, 0);
+  EXPECT_FALSE(std::filesystem::exists(off / "plan-adapted.csv"));
+  EXPECT_NE(ReadBytes(off / "summary.json").find("\"plan_shifts\": []"), std::string::npos);
 }
 
 TEST(CliLocalise, ASmootherSettingWithoutSmoothIsAClearError) {

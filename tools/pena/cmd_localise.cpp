@@ -75,6 +75,15 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                      {"along_search_m", &o.along_search_m},
                      {"along_search_step_m", &o.along_search_step_m},
                      {"matcher.threshold_m", &o.matcher.threshold_m},
+                     {"plan_adaptation.association_m", &o.plan_adaptation.association_m},
+                     {"plan_adaptation.end_margin_m", &o.plan_adaptation.end_margin_m},
+                     {"plan_adaptation.min_other_information", &o.plan_adaptation.min_other_information},
+                     {"plan_adaptation.min_offset_m", &o.plan_adaptation.min_offset_m},
+                     {"plan_adaptation.max_spread_m", &o.plan_adaptation.max_spread_m},
+                     {"plan_adaptation.wall_sigma_m", &o.plan_adaptation.wall_sigma_m},
+                     {"plan_adaptation.prior_sigma_m", &o.plan_adaptation.prior_sigma_m},
+                     {"plan_adaptation.prior_sigma_per_m", &o.plan_adaptation.prior_sigma_per_m},
+                     {"plan_adaptation.prior_facing_sigma_m", &o.plan_adaptation.prior_facing_sigma_m},
                      {"global.boundary_fraction", &chain.tracker.boundary_fraction},
                      {"global.agreement_tolerance_m", &chain.global.agreement_tolerance_m},
                      {"global.min_decide_return_fraction", &chain.tracker.min_decide_return_fraction}};
@@ -86,8 +95,11 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                   {"global.return_fit_keyframes", &chain.tracker.return_fit_keyframes},
                   {"global.min_followed_keyframes", &chain.tracker.min_followed_keyframes},
                   {"global.min_decide_return_keyframes", &chain.tracker.min_decide_return_keyframes},
-                  {"relocalise_after_rounds", &chain.relocalise_after_rounds}};
-  targets.flags = {{"global.answer_on_plan", &chain.tracker.answer_on_plan}};
+                  {"relocalise_after_rounds", &chain.relocalise_after_rounds},
+                  {"plan_adaptation.min_points", &o.plan_adaptation.min_points},
+                  {"plan_adaptation.min_rounds", &o.plan_adaptation.min_rounds}};
+  targets.flags = {{"global.answer_on_plan", &chain.tracker.answer_on_plan},
+                   {"plan_adaptation.enabled", &o.plan_adaptation.enabled}};
   for (const std::string& text : settings) {
     if (text.starts_with(kSmooth)) continue;  // SmootherOptions, with --smooth
     if (text.starts_with(kOdometry)) {
@@ -184,6 +196,8 @@ Run RunChain(const LocaliseArgs& args, io::LogSource& source, std::vector<geomet
   for (const sensors::SensorRecord& record : read_ahead) feed(record);
   while (const auto record = source.Next()) feed(*record);
   run.wall_s = SecondsSince(started);
+  run.plan_shifts = chain.plan_shifts();
+  run.adapted_plan = chain.plan();
   return run;
 }
 
@@ -195,6 +209,13 @@ void PrintResult(const LocaliseArgs& args, const Run& run, const std::optional<T
   std::cout << run.poses.size() << " scans, " << c.rounds << " plan rounds: " << c.accepted << " accepted, "
             << c.outside_rounds << " outside the plan, " << c.reacquired << " re-acquired; "
             << Fixed(run.wall_s, 2) << " s wall\n";
+  if (!run.plan_shifts.empty()) {
+    std::cout << "plan adaptation: " << run.plan_shifts.size() << " segment(s) moved:";
+    for (const localisation::SegmentShift& shift : run.plan_shifts) {
+      std::cout << " #" << shift.index << " " << Fixed(shift.offset_m, 2) << " m";
+    }
+    std::cout << '\n';
+  }
   if (errors) {
     std::cout << "against truth.tum: in-map RMS " << Fixed(errors->in_map_rms_m, 3) << " m, heading "
               << Fixed(errors->in_map_heading_rms_deg, 2) << " deg (" << errors->in_map << " scans)"
@@ -221,6 +242,8 @@ void RunLocalise(const LocaliseArgs& args) {
   io::WriteTum(out_dir / "trajectory.tum", estimate);
   if (args.smooth) io::WriteTum(out_dir / "trajectory-online.tum", online);
   WriteStatusCsv(out_dir / "status.csv", run);
+  const bool adapted = !run.plan_shifts.empty();
+  if (adapted) WriteAdaptedPlan(out_dir, run);
   const geometry::Trajectory truth = TruthNextTo(*source);
   std::optional<TruthErrors> errors, online_errors;
   if (!truth.empty() && !estimate.empty()) errors = CompareWithTruth(estimate, truth, plan);
@@ -232,7 +255,8 @@ void RunLocalise(const LocaliseArgs& args) {
   WriteSummary(out_dir / "summary.json", args, run, errors, online_errors);
   PrintResult(args, run, errors, online_errors);
   std::cout << "wrote " << (out_dir / "trajectory.tum").string() << (args.smooth ? ", trajectory-online.tum" : "")
-            << ", status.csv, summary.json, localisation.png\n";
+            << ", status.csv, summary.json, localisation.png"
+            << (adapted ? ", plan-adapted.csv, plan-shifts.csv" : "") << '\n';
 }
 
 }  // namespace

@@ -41,6 +41,9 @@ struct Run {
   std::string start_source;
   long records = 0;
   double wall_s = 0.0;
+  // With plan adaptation: the walls the rounds moved, and the plan as matched at the end.
+  std::vector<localisation::SegmentShift> plan_shifts;
+  std::vector<geometry::Segment2> adapted_plan;
 };
 
 // Errors against a simulated mission's truth.tum: inside the plan's box (the mapped part) and
@@ -79,6 +82,10 @@ Counts CountRun(const Run& run);
 // With --smooth, `truth_online` holds the causal trajectory's errors ("truth_online").
 void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, const Run& run,
                   const std::optional<TruthErrors>& truth, const std::optional<TruthErrors>& truth_online);
+
+// DIR/plan-adapted.csv: the plan as matched at the end (line CSV, the input's segment order and
+// ids), and DIR/plan-shifts.csv: `id,offset_m,rounds` per moved segment.
+void WriteAdaptedPlan(const std::filesystem::path& out_dir, const Run& run);
 
 // truth.tum next to a simulated entity's native log, if there is one (else empty).
 geometry::Trajectory TruthNextTo(const io::LogSource& source);

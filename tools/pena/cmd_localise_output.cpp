@@ -11,6 +11,7 @@
 #include "cli_support.hpp"
 #include "cmd_localise.hpp"
 #include "pena/eval/stamp_matching.hpp"
+#include "pena/io/line_csv.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/localisation/trajectory_smoother.hpp"
 
@@ -56,6 +57,22 @@ void WriteStatusCsv(const std::filesystem::path& path, const Run& run) {
         << Fixed(c.x_m, 4) << ',' << Fixed(c.y_m, 4) << ',' << Fixed(c.theta_rad / kDeg, 3) << ','
         << Fixed(p.x_m, 4) << ',' << Fixed(p.y_m, 4) << ',' << Fixed(p.theta_rad, 5) << ','
         << (r.recast ? 1 : 0) << ',' << Fixed(r.first_score, 3) << '\n';
+  }
+  if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+void WriteAdaptedPlan(const std::filesystem::path& out_dir, const Run& run) {
+  std::vector<io::LineRow> rows;
+  rows.reserve(run.adapted_plan.size());
+  for (std::size_t i = 0; i < run.adapted_plan.size(); ++i) {
+    rows.push_back({static_cast<std::int64_t>(i), run.adapted_plan[i], ""});
+  }
+  io::WriteLineCsv(out_dir / "plan-adapted.csv", rows);
+  const std::filesystem::path path = out_dir / "plan-shifts.csv";
+  std::ofstream out(path);
+  out << "id,offset_m,rounds\n";
+  for (const localisation::SegmentShift& shift : run.plan_shifts) {
+    out << shift.index << ',' << Fixed(shift.offset_m, 4) << ',' << shift.rounds << '\n';
   }
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
 }
@@ -130,6 +147,17 @@ std::string TruthJson(const std::optional<TruthErrors>& e) {
          ", \"recovery_walk_m\": " + recovery + "]}";
 }
 
+// The walls plan adaptation moved: [{"id": i, "offset_m": o, "rounds": n}, ...].
+std::string ShiftsJson(const Run& run) {
+  std::string json = "[";
+  for (const localisation::SegmentShift& shift : run.plan_shifts) {
+    if (json.size() > 1) json += ", ";
+    json += "{\"id\": " + std::to_string(shift.index) + ", \"offset_m\": " + Fixed(shift.offset_m, 4) +
+            ", \"rounds\": " + std::to_string(shift.rounds) + "}";
+  }
+  return json + "]";
+}
+
 void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, const Run& run,
                   const std::optional<TruthErrors>& truth, const std::optional<TruthErrors>& truth_online) {
   const Counts c = CountRun(run);
@@ -139,7 +167,8 @@ void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, c
       << ", \"scans\": " << run.poses.size() << ", \"rounds\": " << c.rounds << ", \"accepted\": " << c.accepted
       << ", \"reacquired\": " << c.reacquired << ", \"outside_rounds\": " << c.outside_rounds
       << ", \"outside_scans\": " << c.outside_scans << ", \"mean_confidence\": " << Fixed(c.mean_confidence, 3)
-      << ", \"global\": " << GlobalJson(run) << ", \"truth\": " << TruthJson(truth);
+      << ", \"global\": " << GlobalJson(run) << ", \"plan_shifts\": " << ShiftsJson(run)
+      << ", \"truth\": " << TruthJson(truth);
   if (args.smooth) out << ", \"smoothed\": true, \"truth_online\": " << TruthJson(truth_online);
   out << ", \"processing_wall_s\": " << Fixed(run.wall_s, 3) << "}\n";
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");

@@ -23,6 +23,9 @@ cv::Mat Picture(const Run& run, const std::vector<geometry::Segment2>& plan, con
   options.legend_panel_px = 230;
   viz::MapCanvas canvas(lo.array() - 1.0, hi.array() + 1.0, options);
   canvas.DrawSegments(plan, viz::colors::kBlack, 2);
+  std::vector<geometry::Segment2> moved;  // where plan adaptation put the walls it moved
+  for (const auto& shift : run.plan_shifts) moved.push_back(run.adapted_plan[static_cast<std::size_t>(shift.index)]);
+  canvas.DrawSegments(moved, viz::colors::kOrange, 2);
   std::vector<Eigen::Vector2d> truth_m;
   for (const auto& t : truth) truth_m.emplace_back(t.pose.x_m, t.pose.y_m);
   if (!truth_m.empty()) canvas.DrawPolyline(truth_m, viz::colors::kGreen, 1);
@@ -43,6 +46,7 @@ cv::Mat Picture(const Run& run, const std::vector<geometry::Segment2>& plan, con
   if (first != run.poses.end()) canvas.DrawCircle({first->map_from_body.x_m, first->map_from_body.y_m}, 0.5, viz::colors::kBlack, 2);
   canvas.DrawText(hi + Eigen::Vector2d(-0.5 * (hi.x() - lo.x()), 0.7), title, viz::colors::kBlack);
   canvas.AddLegendEntry("a priori plan", viz::colors::kBlack);
+  if (!moved.empty()) canvas.AddLegendEntry("walls moved where seen", viz::colors::kOrange);
   canvas.AddLegendEntry("path, matched on the plan", viz::colors::kBlue);
   canvas.AddLegendEntry("path, outside the plan", viz::colors::kRed);
   canvas.AddLegendEntry("re-acquired", viz::colors::kPurple);

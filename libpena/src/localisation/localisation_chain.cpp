@@ -197,6 +197,12 @@ std::optional<LocalisedPose> LocalisationChain::Add(const sensors::SensorRecord&
   return out;
 }
 
+const std::vector<geometry::Segment2>& LocalisationChain::plan() const {
+  return impl_->map.scanner().segments();
+}
+
+const std::vector<SegmentShift>& LocalisationChain::plan_shifts() const { return impl_->map.plan_shifts(); }
+
 const odometry::OdometryCounts& LocalisationChain::odometry_counts() const {
   return impl_->odometry.counts();
 }

@@ -36,6 +36,7 @@ void Validate(const MapLocaliserOptions& o) {
   Require(o.recast_min_rad > 0.0, "recast_min_rad", "> 0 rad", o.recast_min_rad);
   Require(o.along_search_m >= 0.0, "along_search_m", ">= 0 m", o.along_search_m);
   Require(o.along_search_step_m > 0.0, "along_search_step_m", "> 0 m", o.along_search_step_m);
+  ValidatePlanAdaptationOptions(o.plan_adaptation);
 }
 
 // The window grown by `factor`, capped at `max` per extent.
@@ -91,6 +92,7 @@ bool Interior(const scan_matching::MatchResult& match, const scan_matching::Sear
 struct MapLocaliser::Impl {
   MapLocaliserOptions options;
   VirtualScanner scanner;
+  PlanAdaptation adaptation;
   geometry::Pose2 map_from_odom;
   MapStatus status = MapStatus::kUnknown;
   scan_matching::SearchWindow window;
@@ -150,6 +152,8 @@ struct MapLocaliser::Impl {
            std::abs(correction.theta_rad) >= options.recast_min_rad;
   }
   void Conclude(const geometry::Pose2& odom_from_body, MapCorrection& round);
+  // An accepted round's returns (body frame) measure the plan's walls (plan_adaptation).
+  void Learn(const scan_matching::Points2& real, const MapCorrection& round, double walked_m);
 };
 
 // Accepts or rejects a round on the paper's correlation threshold, and keeps the least-squares
@@ -286,15 +290,32 @@ MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
     // may have slid (office seed 1 at 166.5 s: 0.47 m along the corridor in one keyframe).
     if (auto along = AlongSearch(scan, real, round, *found)) round = *along;
   }
+  const double walked_m = distance_m;  // since the round before (Conclude resets it)
   Conclude(odom_from_body, round);
+  if (round.accepted) Learn(real, round, walked_m);
   return round;
+}
+
+void MapLocaliser::Impl::Learn(const scan_matching::Points2& real, const MapCorrection& round, double walked_m) {
+  if (!options.plan_adaptation.enabled) return;
+  const geometry::Pose2& map_from_body = round.map_from_body_after;
+  const geometry::Pose2& before = round.map_from_body_before;
+  const RoundView view{Eigen::Vector2d(map_from_body.x_m, map_from_body.y_m),
+                       Eigen::Vector3d(map_from_body.x_m - before.x_m, map_from_body.y_m - before.y_m,
+                                       geometry::NormalizeAngle(map_from_body.theta_rad - before.theta_rad)),
+                       walked_m};
+  scan_matching::Points2 on_map;
+  on_map.reserve(real.size());
+  for (const Eigen::Vector2d& p : real) on_map.push_back(geometry::TransformPoint(map_from_body, p));
+  if (adaptation.Observe(on_map, view)) scanner = VirtualScanner(adaptation.plan(), options.scanner);
 }
 
 MapLocaliser::MapLocaliser(const MapLocaliserOptions& options, std::vector<geometry::Segment2> plan,
                            const geometry::Pose2& map_from_odom) {
   Validate(options);
+  PlanAdaptation adaptation(options.plan_adaptation, plan);
   impl_ = std::make_unique<Impl>(Impl{options, VirtualScanner(std::move(plan), options.scanner),
-                                      map_from_odom, MapStatus::kUnknown, options.window, 0, 0.0,
+                                      std::move(adaptation), map_from_odom, MapStatus::kUnknown, options.window, 0, 0.0,
                                       std::nullopt, map_from_odom, false});
 }
 
@@ -337,6 +358,7 @@ void MapLocaliser::Relocalise(const geometry::Pose2& map_from_odom) {
 MapStatus MapLocaliser::status() const { return impl_->status; }
 double MapLocaliser::distance_since_correction_m() const { return impl_->distance_m; }
 const VirtualScanner& MapLocaliser::scanner() const { return impl_->scanner; }
+const std::vector<SegmentShift>& MapLocaliser::plan_shifts() const { return impl_->adaptation.shifts(); }
 
 const char* ToString(MapStatus status) {
   switch (status) {

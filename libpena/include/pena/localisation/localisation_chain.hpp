@@ -82,6 +82,10 @@ class LocalisationChain {
   std::optional<LocalisedPose> Add(const sensors::SensorRecord& record);
 
   const odometry::OdometryCounts& odometry_counts() const;
+  // The plan as matched now (with the walls MapLocaliserOptions::plan_adaptation moved) and
+  // those moves.
+  const std::vector<geometry::Segment2>& plan() const;
+  const std::vector<SegmentShift>& plan_shifts() const;
 
  private:
   struct Impl;

@@ -13,6 +13,7 @@
 
 #include "pena/geometry/pose2.hpp"
 #include "pena/geometry/segment2.hpp"
+#include "pena/localisation/plan_adaptation.hpp"
 #include "pena/localisation/virtual_scanner.hpp"
 #include "pena/odometry/laser_odometry.hpp"
 #include "pena/scan_matching/correlation_scan_matcher.hpp"
@@ -62,6 +63,9 @@ struct MapLocaliserOptions {
   // matched odometry scan (a corridor along which the odometry slid) is corrected as well.
   bool every_scan = false;
   VirtualScannerOptions scanner;
+  // Beyond the paper: walls the accepted rounds measure off the drawing (while other walls pin
+  // the entity down) are moved where they are seen (plan_adaptation.hpp).
+  PlanAdaptationOptions plan_adaptation;
 };
 
 // Where the entity is judged to be with respect to the plan.
@@ -125,7 +129,9 @@ class MapLocaliser {
   MapStatus status() const;
   // Walked distance in metres since the last accepted correction.
   double distance_since_correction_m() const;
+  // The plan as matched now: the a priori one with the walls the rounds moved (plan_adaptation).
   const VirtualScanner& scanner() const;
+  const std::vector<SegmentShift>& plan_shifts() const;
 
  private:
   struct Impl;
