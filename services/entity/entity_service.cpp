@@ -131,6 +131,15 @@ void EntityService::LoadPlan() {
   pipeline_->SetPlan(std::move(plan));
 }
 
+void EntityService::LogPlanShifts() {
+  const std::vector<localisation::SegmentShift>& shifts = pipeline_->plan_shifts();
+  for (; plan_shifts_logged_ < shifts.size(); ++plan_shifts_logged_) {
+    const localisation::SegmentShift& shift = shifts[plan_shifts_logged_];
+    spdlog::info("{}: plan wall #{} seen {:.2f} m off its drawing in {} rounds: moved there", entity_id_,
+                 shift.index, shift.offset_m, shift.rounds);
+  }
+}
+
 bool EntityService::FusionMatched() const {
   // Each endpoint pair matches on its own: a reference scan written before the fusion's scan
   // reader matched is lost (volatile), and in lockstep its answer would then be awaited in vain.
@@ -231,6 +240,7 @@ void EntityService::Feed(const sensors::SensorRecord& record) {
   if (options_.start_unknown) ToPlacedFrame(*step);
   last_stamp_s_ = step->odometry.stamp_s;
   trajectory_.push_back({last_stamp_s_, step->world_from_body});
+  if (step->plan_round) LogPlanShifts();
   // The scan's map change, then its reference scan, then its pose: each carries what came
   // before it on the other topics (versions, reference scans sent), so a lockstep fusion
   // (services/fusion/lockstep_order.hpp) can put the topics back in this order.
@@ -351,8 +361,9 @@ void EntityService::Finish() {
   summary_.local_map_version = pipeline_->local_map().version();
   summary_.local_map_segments = pipeline_->local_map().size();
   if (pipeline_->has_plan()) {
-    spdlog::info("{}: plan localisation: {} rounds, {} corrections", entity_id_,
-                 pipeline_->counts().plan_rounds, pipeline_->counts().plan_corrections);
+    spdlog::info("{}: plan localisation: {} rounds, {} corrections, {} plan walls moved", entity_id_,
+                 pipeline_->counts().plan_rounds, pipeline_->counts().plan_corrections,
+                 pipeline_->plan_shifts().size());
   }
   if (!delta_writer_.WaitForAcknowledgments(options_.linger_s) ||
       !snapshot_writer_.WaitForAcknowledgments(options_.linger_s)) {

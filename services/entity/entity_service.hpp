@@ -69,6 +69,8 @@ class EntityService {
   void ReadAhead();
   // --plan: reads the a priori plan and gives it to the pipeline (map localisation).
   void LoadPlan();
+  // Logs the plan walls the localiser moved since the last call (plan adaptation).
+  void LogPlanShifts();
   // --record: the recording directory and its native sensor log (header from the input).
   void StartRecording();
   bool FusionMatched() const;
@@ -107,6 +109,7 @@ class EntityService {
   EntityServiceOptions options_;
   std::unique_ptr<io::LogSource> source_;
   LiveSensorSource* live_source_ = nullptr;  // source_ when the input is dds, else null
+  std::size_t plan_shifts_logged_ = 0;
   std::vector<sensors::SensorRecord> read_ahead_;
   sensors::EntityKind kind_ = sensors::EntityKind::kRobot;
   std::string entity_id_;

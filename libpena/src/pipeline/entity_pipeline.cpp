@@ -94,6 +94,11 @@ std::optional<ScanStep> EntityPipeline::Add(const sensors::SensorRecord& record)
   return step;
 }
 
+const std::vector<localisation::SegmentShift>& EntityPipeline::plan_shifts() const {
+  static const std::vector<localisation::SegmentShift> kNone;
+  return localiser_ ? localiser_->plan_shifts() : kNone;
+}
+
 void EntityPipeline::SetPlan(std::vector<geometry::Segment2> plan_m) {
   if (plan_m.empty()) throw std::invalid_argument("pipeline: the plan has no segments");
   localiser_ = std::make_unique<localisation::MapLocaliser>(options_.plan_localisation,

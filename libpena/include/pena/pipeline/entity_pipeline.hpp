@@ -122,6 +122,8 @@ class EntityPipeline {
   // options.plan_localisation.
   void SetPlan(std::vector<geometry::Segment2> plan_m);
   bool has_plan() const { return localiser_ != nullptr; }
+  // The plan walls the localiser moved where it saw them (plan adaptation); empty without a plan.
+  const std::vector<localisation::SegmentShift>& plan_shifts() const;
 
   // Applies a correction (see CorrectionStatus).
   CorrectionResult ApplyCorrection(const Correction& correction);
