@@ -1,14 +1,12 @@
 #include "pena/localisation/map_localiser.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "map_localiser_impl.hpp"
 #include "pena/options_check.hpp"
-#include "pena/scan_matching/point_set.hpp"
 
 namespace pena::localisation {
 namespace {
@@ -49,154 +47,7 @@ scan_matching::SearchWindow Grown(const scan_matching::SearchWindow& w,
   return out;
 }
 
-long Candidates(const scan_matching::SearchWindow& w) {
-  const auto side = [](double size, double step) { return 2L * std::lround(0.5 * size / step) + 1; };
-  return side(w.size_x_m, w.step_xy_m) * side(w.size_y_m, w.step_xy_m) *
-         side(w.size_theta_rad, w.step_theta_rad);
-}
-
-// How much eq. 2 falls when the best pose is moved by `probe_m` either way along `direction`
-// (body frame): the correlation surface's own evidence that the weak direction is constrained.
-double AlongDrop(const scan_matching::CorrelationScanMatcher& matcher, const scan_matching::Points2& real,
-                 const geometry::Pose2& best, const Eigen::Vector2d& direction, double probe_m) {
-  const double peak = matcher.Score(real, best);
-  double side = 0.0;
-  for (const double sign : {-1.0, 1.0}) {
-    const geometry::Pose2 moved{best.x_m + sign * probe_m * direction.x(),
-                                best.y_m + sign * probe_m * direction.y(), best.theta_rad};
-    side = std::max(side, matcher.Score(real, moved));
-  }
-  return peak - side;
-}
-
-// What one search found: the correction (weak direction dropped where the scan does not
-// constrain it), the weak translation direction of the refinement (body frame), and whether the
-// search's best grid pose lies inside its window, not on its edge (only such an optimum is
-// re-judged: one on the edge was not searched around, and re-casting there chained corrections
-// beyond the window along office seed 3's corridor).
-struct Found {
-  geometry::Pose2 correction;
-  Eigen::Vector2d weak = Eigen::Vector2d::UnitX();
-  bool interior = false;
-};
-
-bool Interior(const scan_matching::MatchResult& match, const scan_matching::SearchWindow& w) {
-  const geometry::Pose2& g = match.grid_pose;
-  return match.converged && std::abs(g.x_m) < 0.5 * (w.size_x_m - w.step_xy_m) &&
-         std::abs(g.y_m) < 0.5 * (w.size_y_m - w.step_xy_m) &&
-         std::abs(g.theta_rad) < 0.5 * (w.size_theta_rad - w.step_theta_rad);
-}
-
 }  // namespace
-
-struct MapLocaliser::Impl {
-  MapLocaliserOptions options;
-  VirtualScanner scanner;
-  PlanAdaptation adaptation;
-  geometry::Pose2 map_from_odom;
-  MapStatus status = MapStatus::kUnknown;
-  scan_matching::SearchWindow window;
-  int failures = 0;
-  double distance_m = 0.0;
-  std::optional<geometry::Pose2> last_odom;
-  // The pose on the plan at the last scan (the output).
-  geometry::Pose2 pose;
-  bool relocalised = false;  // Relocalise was called: the next round says so
-
-  // Real returns in the body (laser) frame within the usable range band.
-  scan_matching::Points2 RealPoints(const sensors::LaserScan& scan) const {
-    scan_matching::Points2 points = scan_matching::ScanToPoints(scan, options.min_range_m);
-    std::erase_if(points, [&](const Eigen::Vector2d& p) { return p.norm() > options.max_range_m; });
-    return points;
-  }
-
-  // The plan seen from `map_from_body` by the same laser, oversampled, in the body frame.
-  scan_matching::Points2 VirtualPoints(const sensors::LaserScan& scan,
-                                       const geometry::Pose2& map_from_body) const {
-    if (scan.ranges_m.empty()) return {};
-    sensors::LaserGeometry geometry = scan.geometry;
-    geometry.angle_increment_rad /= options.oversample;
-    geometry.max_range_m = std::min(options.max_range_m, scan.geometry.max_range_m > 0.0
-                                                             ? scan.geometry.max_range_m
-                                                             : options.max_range_m);
-    const std::size_t beams = (scan.ranges_m.size() - 1) * static_cast<std::size_t>(options.oversample) + 1;
-    return scan_matching::ScanToPoints(scanner.Scan(map_from_body, geometry, beams), 0.0);
-  }
-
-  void Accumulate(const geometry::Pose2& odom_from_body) {
-    if (last_odom) {
-      distance_m += std::hypot(odom_from_body.x_m - last_odom->x_m, odom_from_body.y_m - last_odom->y_m);
-    }
-    last_odom = odom_from_body;
-  }
-
-  // `on_prior`: the odometry took this pose, or a direction of it, from its motion prior.
-  MapCorrection Round(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_body, bool on_prior);
-  // One search against the plan seen from `map_from_body` in `searched`; fills the round's
-  // figures and acceptance, returns the correction it found (weak direction dropped where the
-  // scan does not constrain it), also when rejected. nullopt: the plan is not in sight.
-  std::optional<Found> Search(const sensors::LaserScan& scan, const scan_matching::Points2& real,
-                              const geometry::Pose2& map_from_body,
-                              const scan_matching::SearchWindow& searched, MapCorrection& round) const;
-  // The round judged again from where `correction` puts the entity (see recast_min_m).
-  MapCorrection Recast(const sensors::LaserScan& scan, const scan_matching::Points2& real,
-                       const MapCorrection& round, const geometry::Pose2& correction) const;
-  // A degenerate round: the places along the weak direction, each judged from where it is.
-  std::optional<MapCorrection> AlongSearch(const sensors::LaserScan& scan, const scan_matching::Points2& real,
-                                           const MapCorrection& round, const Found& found) const;
-  Found Judge(const scan_matching::MatchResult& match, const scan_matching::CorrelationScanMatcher& matcher,
-              const scan_matching::Points2& real, const scan_matching::SearchWindow& searched,
-              MapCorrection& round) const;
-  bool NeedsRecast(const geometry::Pose2& correction) const {
-    return std::hypot(correction.x_m, correction.y_m) >= options.recast_min_m ||
-           std::abs(correction.theta_rad) >= options.recast_min_rad;
-  }
-  void Conclude(const geometry::Pose2& odom_from_body, MapCorrection& round);
-  // An accepted round's returns (body frame) measure the plan's walls (plan_adaptation).
-  void Learn(const scan_matching::Points2& real, const MapCorrection& round, double walked_m);
-};
-
-// Accepts or rejects a round on the paper's correlation threshold, and keeps the least-squares
-// refinement only along directions the scan constrains.
-Found MapLocaliser::Impl::Judge(const scan_matching::MatchResult& match,
-                                const scan_matching::CorrelationScanMatcher& matcher,
-                                const scan_matching::Points2& real, const scan_matching::SearchWindow& searched,
-                                MapCorrection& round) const {
-  round.score = match.score;
-  round.hits = match.hits;
-  geometry::Pose2 correction = match.reference_from_scan;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(match.information.topLeftCorner<2, 2>());
-  const Eigen::Vector2d values = solver.eigenvalues();  // ascending
-  round.constraint_ratio = values(1) > 0.0 ? std::max(0.0, values(0)) / values(1) : 0.0;
-  const Eigen::Vector2d weak = solver.eigenvectors().col(0);
-  round.weak_axis_rad = std::atan2(weak.y(), weak.x());
-  round.along_drop = AlongDrop(matcher, real, correction, weak, options.along_probe_m);
-  if (round.constraint_ratio < options.degenerate_eigen_ratio && round.along_drop < options.along_min_drop) {
-    // Along a corridor the point-to-line information is weak by construction; the correlation
-    // surface tells whether door frames and corridor ends still pin the pose down (the score
-    // falls off along the corridor). Where it is flat, a plan wall drawn across an opening
-    // could drag the pose: the odometry is kept in the weak direction.
-    const Eigen::Vector2d strong = solver.eigenvectors().col(1);
-    const Eigen::Vector2d kept = strong * strong.dot(Eigen::Vector2d(correction.x_m, correction.y_m));
-    correction.x_m = kept.x();
-    correction.y_m = kept.y();
-    round.degenerate = true;
-  }
-  const double min_score =
-      status == MapStatus::kOutsideMap ? options.reacquire_min_score : options.min_score;
-  // The least-squares refinement after the search is not bounded by the window. It may finish a
-  // little beyond it, but a correction more than twice the searched half-extent was not searched
-  // for (intel: a -17 deg turn out of a +/-2 deg window lost the entity for good).
-  const geometry::Pose2& found = match.reference_from_scan;
-  const bool in_window = std::abs(found.x_m) <= searched.size_x_m &&
-                         std::abs(found.y_m) <= searched.size_y_m &&
-                         std::abs(found.theta_rad) <= searched.size_theta_rad;
-  round.accepted =
-      match.converged && in_window && match.hits >= options.min_hits && match.score >= min_score;
-  round.confidence = match.score * std::min(1.0, match.hits / (2.0 * options.min_hits));
-  round.correction = round.accepted ? correction : geometry::Pose2{};
-  return {correction, weak, in_window && Interior(match, searched)};
-}
 
 void MapLocaliser::Impl::Conclude(const geometry::Pose2& odom_from_body, MapCorrection& round) {
   round.map_from_body_after = geometry::Compose(round.map_from_body_before, round.correction);
@@ -219,58 +70,6 @@ void MapLocaliser::Impl::Conclude(const geometry::Pose2& odom_from_body, MapCorr
   round.status = status;
 }
 
-std::optional<Found> MapLocaliser::Impl::Search(const sensors::LaserScan& scan, const scan_matching::Points2& real,
-                                                const geometry::Pose2& map_from_body,
-                                                const scan_matching::SearchWindow& searched,
-                                                MapCorrection& round) const {
-  const scan_matching::Points2 virtual_points = VirtualPoints(scan, map_from_body);
-  round.virtual_points = static_cast<int>(virtual_points.size());
-  round.accepted = false;
-  round.degenerate = false;
-  round.correction = {};
-  if (real.empty() || virtual_points.size() < static_cast<std::size_t>(options.min_hits)) {
-    return std::nullopt;
-  }
-  const scan_matching::CorrelationScanMatcher matcher(options.matcher, virtual_points);
-  // Exhaustive search is cheaper for the paper's small window (no max-grids to build).
-  const scan_matching::MatchResult match =
-      Candidates(searched) > 20000 ? matcher.MatchBranchAndBound(real, {}, searched)
-                                   : matcher.MatchExhaustive(real, {}, searched);
-  return Judge(match, matcher, real, searched, round);
-}
-
-MapCorrection MapLocaliser::Impl::Recast(const sensors::LaserScan& scan, const scan_matching::Points2& real,
-                                         const MapCorrection& round, const geometry::Pose2& correction) const {
-  MapCorrection again = round;
-  const auto refined =
-      Search(scan, real, geometry::Compose(round.map_from_body_before, correction), options.window, again);
-  again.recast = true;
-  again.first_score = round.first_score;
-  if (refined && again.accepted) again.correction = geometry::Compose(correction, again.correction);
-  return again;
-}
-
-std::optional<MapCorrection> MapLocaliser::Impl::AlongSearch(const sensors::LaserScan& scan,
-                                                             const scan_matching::Points2& real,
-                                                             const MapCorrection& round, const Found& found) const {
-  std::optional<MapCorrection> best;
-  const int steps = static_cast<int>(std::floor(options.along_search_m / options.along_search_step_m + 1e-9));
-  for (int k = -steps; k <= steps; ++k) {
-    if (k == 0) continue;
-    const double along_m = k * options.along_search_step_m;
-    const geometry::Pose2 moved{found.correction.x_m + along_m * found.weak.x(),
-                                found.correction.y_m + along_m * found.weak.y(), found.correction.theta_rad};
-    MapCorrection candidate = Recast(scan, real, round, moved);
-    // Only a place the scan pins down there (door frames, a corridor end) can tell, and it
-    // needs the evidence of a re-acquisition: a search this wide errs more (the team building's
-    // disturbed-compass walk took a place 1.3 m off that scored 0.68).
-    if (!candidate.accepted || candidate.degenerate || candidate.score < options.reacquire_min_score) continue;
-    if (!best || candidate.score > best->score) best = candidate;
-  }
-  if (!best || best->score < round.score + options.along_min_drop) return std::nullopt;
-  return best;
-}
-
 MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
                                         const geometry::Pose2& odom_from_body, bool on_prior) {
   MapCorrection round;
@@ -280,7 +79,7 @@ MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
   round.window_theta_rad = window.size_theta_rad;
   const scan_matching::Points2 real = RealPoints(scan);
   round.points = static_cast<int>(real.size());
-  const std::optional<Found> found = Search(scan, real, round.map_from_body_before, window, round);
+  const std::optional<internal::Found> found = Search(scan, real, round.map_from_body_before, window, round);
   round.first_score = round.score;
   if (found && found->interior && NeedsRecast(found->correction)) {
     // A large correction is judged on the plan as seen from where it puts the entity.
