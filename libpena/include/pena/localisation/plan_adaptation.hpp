@@ -29,7 +29,8 @@ struct PlanAdaptationOptions {
   double wall_sigma_m = 0.03;
   // The motion prior (the pose the odometry predicted for the round) is one more reference: its
   // standard deviation grows with the distance walked since the previous accepted round; while
-  // it is below prior_facing_sigma_m it counts as a line of its own (see min_other_lines).
+  // it is at most prior_facing_sigma_m it counts as one of the two references a measured wall
+  // needs (min_other_information below).
   double prior_sigma_m = 0.02;
   double prior_sigma_per_m = 0.03;
   double prior_sigma_rad = 0.005;
@@ -91,39 +92,41 @@ class PlanAdaptation {
     Eigen::Vector2d centroid_m;
     double median_m;
   };
-  static std::vector<Half> Halves(const Support& support, const Eigen::Vector2d& along);
-  std::vector<int> SegmentsNear(const scan_matching::Points2& points) const;
-  std::vector<Support> Associate(const scan_matching::Points2& points) const;
-  // The segment's offset where the other walls put the entity; nullopt when they do not pin
-  // the pose down along its normal (min_other_information).
-  std::optional<double> OffsetAgainstOthers(int measured, const std::vector<Support>& support,
-                                            const RoundView& view) const;
   // The pose error of the round (x, y in the map frame, heading about the body) where the other
   // walls and the motion prior put it, and its covariance (units: wall_sigma_m^2).
   struct PoseError {
     Eigen::Vector3d error;
     Eigen::Matrix3d covariance;
   };
-  // nullopt when fewer than two references face the measured segment or they disagree.
-  std::optional<PoseError> ErrorFromOthers(int measured, const std::vector<Support>& support,
-                                           const RoundView& view) const;
   // One row of the least squares on the pose error (x, y, heading): d(value) / d(error).
   struct Measurement {
     Eigen::Vector3d row;
     double value_m;
     double weight;
   };
+
+  std::vector<int> SegmentsNear(const scan_matching::Points2& points) const;
+  std::vector<Support> Associate(const scan_matching::Points2& points) const;
+  static std::vector<Half> Halves(const Support& support, const Eigen::Vector2d& along);
+  // nullopt when fewer than two references face the measured segment or they disagree.
+  std::optional<PoseError> ErrorFromOthers(int measured, const std::vector<Support>& support,
+                                           const RoundView& view) const;
+  // The segment's offset where the other walls put the entity; nullopt when they do not pin
+  // the pose down along its normal (min_other_information).
+  std::optional<double> OffsetAgainstOthers(int measured, const std::vector<Support>& support,
+                                            const RoundView& view) const;
   double PriorSigma(const RoundView& view) const;
   bool Facing(const RoundView& view) const;
   std::vector<Measurement> PriorRows(const RoundView& view) const;
+  // Adds one round's offset of a segment; moves it when min_rounds agree. True when moved.
   bool Weigh(int segment, double offset_m);
+  bool OnOneLine(int a, int b) const;
+  void Move(int index, double offset_m, int rounds);
+
   PlanAdaptationOptions options_;
   std::vector<geometry::Segment2> plan_;
   std::vector<Evidence> evidence_;
   std::vector<SegmentShift> shifts_;
-
-  bool OnOneLine(int a, int b) const;
-  void Move(int index, double offset_m, int rounds);
 };
 
 }  // namespace pena::localisation
