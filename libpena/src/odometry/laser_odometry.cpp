@@ -7,7 +7,6 @@
 
 #include "laser_odometry_impl.hpp"
 #include "options_check.hpp"
-#include "reference_fill.hpp"
 
 namespace pena::odometry {
 namespace {
@@ -36,37 +35,6 @@ scan_matching::Points2 UsablePoints(const sensors::LaserScan& scan, const LaserO
   scan_matching::Points2 points = scan_matching::ScanToPoints(scan, o.min_range_m);
   std::erase_if(points, [&](const Eigen::Vector2d& p) { return p.norm() > o.max_range_m; });
   return points;
-}
-
-// Degenerate places (a featureless corridor): the matched translation is only trusted across
-// the weak direction of J^T J; along it the prior's component is kept instead of sliding. Weakly
-// constrained ones (below slide_ratio) too when the match slid farther than max_slide_m along it:
-// their few along-track points (floor hits moving with the person, one door frame) pulled it.
-// With degenerate_slide_backward_only only slides back against travel_m (the predicted motion
-// over the last scan interval) count: returns that move with the person only ever pull back.
-// Returns the weak direction (world frame, unit) when the prior's component was kept.
-std::optional<Eigen::Vector2d> KeepPriorAlongWeakDirection(const Eigen::Matrix3d& information,
-                                                           const LaserOdometryOptions& options,
-                                                           const geometry::Pose2& prior,
-                                                           const Eigen::Vector2d& travel_m,
-                                                           geometry::Pose2& pose) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(information.topLeftCorner<2, 2>());
-  const double weak = solver.eigenvalues()(0);
-  const double strong = solver.eigenvalues()(1);
-  if (!(strong > 0.0)) return std::nullopt;
-  const Eigen::Vector2d direction = solver.eigenvectors().col(0);
-  const Eigen::Vector2d offset(prior.x_m - pose.x_m, prior.y_m - pose.y_m);
-  const double slide_m = std::abs(direction.dot(offset));
-  const bool degenerate = weak < options.degenerate_eigen_ratio * strong;
-  const Eigen::Vector2d shift = direction * direction.dot(offset);  // from the match to the prior
-  const bool backward = shift.dot(travel_m) > 0.0;
-  const bool slid = weak < options.degenerate_slide_ratio * strong &&
-                    slide_m > options.degenerate_max_slide_m &&
-                    (!options.degenerate_slide_backward_only || backward);
-  if (!degenerate && !slid) return std::nullopt;
-  pose.x_m += shift.x();
-  pose.y_m += shift.y();
-  return direction;
 }
 
 }  // namespace
@@ -152,22 +120,6 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   return out;
 }
 
-void LaserOdometry::Impl::CheckPace(const Eigen::Matrix3d& information,
-                                    const geometry::Pose2& prior) {
-  if (!pace_check.enabled() || !motion.last_pose()) return;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(information.topLeftCorner<2, 2>());
-  if (!(solver.eigenvalues()(0) < options.pace_check_weak_ratio * solver.eigenvalues()(1))) return;
-  const std::optional<Eigen::Vector2d> along =
-      pace_check.FallsBehind(*motion.last_pose(), estimate, prior);
-  if (!along) return;
-  const Eigen::Vector2d to_prior_m(prior.x_m - estimate.x_m, prior.y_m - estimate.y_m);
-  const double shift_m = along->dot(to_prior_m);
-  estimate.x_m += along->x() * shift_m;
-  estimate.y_m += along->y() * shift_m;
-  match_weak_direction = along;  // as a degenerate match's: the covariance takes the prior's there
-  ++counts.pace_held;
-}
-
 geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
   const std::optional<geometry::Pose2> motion_before = motion.last_pose();
   const geometry::Pose2 increment = motion.TakeIncrement(scan);
@@ -221,112 +173,6 @@ scan_matching::Points2 LaserOdometry::Impl::DropWalkerFixed(scan_matching::Point
   if (dropped == 0) return points;
   counts.walker_fixed_dropped += dropped;
   return internal::WithoutMarked(points, moving);
-}
-
-scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Points2& points,
-                                                       const geometry::Pose2& prior,
-                                                       OdometryEstimate& out) {
-  for (;;) {
-    const scan_matching::SearchWindow searched = window.Current();
-    last_searched = searched;
-    out.wide_search = out.wide_search || window.IsWide();
-    scan_matching::MatchResult result =
-        window.IsBase() ? matcher->MatchExhaustive(points, prior, searched)
-                        : matcher->MatchBranchAndBound(points, prior, searched);
-    // A low score or a best pose on the window's edge (the optimum may lie outside): search
-    // again at once with a grown window, up to the wide one, before giving up on this scan.
-    const bool retry = result.score < options.min_score ||
-                       scan_matching::OnWindowEdge(result.grid_pose, prior, searched);
-    if (!retry || !window.Grow()) return result;
-  }
-}
-
-void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEstimate& out) {
-  geometry::Pose2 prior = out.world_from_prior;
-  // The place choice: back where an earlier keyframe was taken, match against that one again.
-  bool rebuild = local_map.ChooseAgain(prior, out.stamp_s);
-  if (FillWhileFrozen()) rebuild = local_map.FillFreeSlots() || rebuild;
-  if (rebuild) {
-    matcher.emplace(options.matcher, local_map.Reference());
-  }
-  const internal::WindowScale window_before = window;
-  scan_matching::MatchResult result = Search(points, prior, out);
-  if (held && result.score < options.keyframe_turn_min_score) {
-    CommitHeld(out);
-    prior = out.world_from_prior;
-    // A failed match below restarts the local map at `estimate`: it must be the prior anchored
-    // at the committed keyframe, not the one anchored at the keyframe before the hold (office
-    // seed 3 at 144.25 s: that one carried a poor turn keyframe's +6 deg into the new map).
-    estimate = prior;
-    result = Search(points, prior, out);
-  }
-  if (result.score < options.local_map_place_fill_below_score) {
-    result = SearchFilled(points, prior, window_before, result, out);
-  }
-  if (result.score < options.min_score) {
-    // The motion sensor itself may be wrong (logged odometry that froze, then jumped): try
-    // constant velocity and standing still too, and keep the best-scoring hypothesis.
-    for (const geometry::Pose2& alternative :
-         {geometry::Compose(previous_estimate, velocity), previous_estimate}) {
-      scan_matching::MatchResult other = Search(points, alternative, out);
-      if (other.score > result.score) {
-        result = other;
-        prior = alternative;
-      }
-    }
-  }
-  counts.wide_searches += out.wide_search ? 1 : 0;
-  out.score = result.score;
-  if (result.score < options.min_score) {
-    out.status = MatchStatus::kFailed;
-    ++counts.failed;
-    if (out.stale) return;  // a stale scan restarts nothing
-    // Lost the reference: restart the local map from this scan at the dead-reckoning pose.
-    local_map.Clear();
-    TakeKeyframe(points, out);
-    return;
-  }
-  estimate = result.reference_from_scan;
-  match_information = result.information;
-  match_reference_covariance = ReferenceCovariance(estimate);  // before a keyframe changes it
-  const Eigen::Vector2d travel_m(prior.x_m - previous_estimate.x_m, prior.y_m - previous_estimate.y_m);
-  match_weak_direction =
-      KeepPriorAlongWeakDirection(result.information, options, prior, travel_m, estimate);
-  if (!match_weak_direction) CheckPace(result.information, prior);
-  const bool degenerate = match_weak_direction.has_value();
-  out.status = degenerate ? MatchStatus::kDegenerate : MatchStatus::kMatched;
-  ++(degenerate ? counts.degenerate : counts.matched);
-  if (out.stale) return;  // where the earlier scan was taken: output, but it anchors nothing
-  const GateDecision gate = CheckPriorGate(out);
-  if (gate == GateDecision::kGated) {
-    out.gated = true;  // the pose is the match's, but it anchors nothing
-    ++counts.gated;
-    const int fallback = options.prior_gate_fallback_scans;
-    if (fallback > 0 && ++gated_in_row >= fallback) FallBackToPrior(points, out);
-    return;
-  }
-  gated_in_row = 0;
-  window.Shrink();
-  const geometry::Pose2 moved = geometry::Between(local_map.latest().world_from_body, estimate);
-  // A deviation trusted after prior_gate_confirm scans must re-anchor the priors at once: without
-  // a keyframe here the next prior is as far off again and is gated again.
-  if (gate == GateDecision::kTrusted) {
-    gate_trusted = true;
-    TakeKeyframe(points, out);
-    return;
-  }
-  if (result.score >= options.keyframe_turn_min_score) held.reset();  // the reference still holds
-  if (NearAKeyframe(moved) && result.score >= options.keyframe_min_score) return;
-  if (HoldDuringFastTurn(result.score, out)) {
-    ++counts.turn_held;  // the pose is output; the reference waits for a better match
-    const std::optional<geometry::Pose2> motion_pose =
-        frozen_odometry.PairedPose(motion.last_pose(), estimate);
-    held = HeldCandidate{points,      estimate,    motion_pose, motion.heading_sigma_rad(),
-                         poor_timing, out.stamp_s, WeakDirectionInMotionFrame(motion_pose),
-                         covariance};
-    return;
-  }
-  TakeKeyframe(points, out);
 }
 
 const OdometryCounts& LaserOdometry::counts() const { return impl_->counts; }
