@@ -83,6 +83,11 @@ Counts CountRun(const Run& run);
 void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, const Run& run,
                   const std::optional<TruthErrors>& truth, const std::optional<TruthErrors>& truth_online);
 
+// --set NAME=VALUE (cmd_localise_settings.cpp): the chain's options, and with --smooth the
+// smoother's (smooth.NAME); unknown names are errors (AddLocaliseCommand refuses smooth.* without --smooth).
+void ApplySettings(const std::vector<std::string>& settings, localisation::LocalisationChainOptions& chain);
+localisation::TrajectorySmootherOptions SmootherOptions(const std::vector<std::string>& settings);
+
 // DIR/plan-adapted.csv: the plan as matched at the end (line CSV, the input's segment order and
 // ids), and DIR/plan-shifts.csv: `id,offset_m,rounds` per moved segment.
 void WriteAdaptedPlan(const std::filesystem::path& out_dir, const Run& run);

@@ -1,0 +1,112 @@
+// `pena localise --set NAME=VALUE`: the names of the plan-matching, global-start, plan-adaptation
+// and smoother options (docs/localisation.md, "pena localise").
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cli_support.hpp"
+#include "cmd_localise.hpp"
+#include "odometry_settings.hpp"
+
+namespace pena::cli::localise {
+
+// Applies --set NAME=VALUE to the plan-matching options (names as in MapLocaliserOptions) and,
+// prefixed "odometry.", to the odometry underneath (the names of `pena odometry --set`), and
+// global.compass_tolerance_deg (LocalisationChainOptions::compass_tolerance_rad, in degrees),
+// global.freeze_history_keyframes, global.boundary_fraction, global.freeze_ranking,
+// global.answer_on_plan (0/1), global.return_fit_keyframes, global.min_followed_keyframes,
+// global.min_decide_return_fraction and global.min_decide_return_keyframes (GlobalTrackerOptions),
+// global.agreement_tolerance_m (GlobalLocaliserOptions), relocalise_after_rounds
+// (LocalisationChainOptions, plan rounds; 0 = off) and plan_adaptation.* (PlanAdaptationOptions);
+// integer options are rounded; unknown names are errors. The options are validated by
+// MapLocaliser's constructor as usual.
+void ApplySettings(const std::vector<std::string>& settings, localisation::LocalisationChainOptions& chain) {
+  localisation::MapLocaliserOptions& o = chain.map;
+  constexpr std::string_view kOdometry = "odometry.";
+  constexpr std::string_view kSmooth = "smooth.";
+  std::vector<std::string> odometry_settings;
+  SettingTargets targets;
+  targets.doubles = {{"min_score", &o.min_score},
+                     {"reacquire_min_score", &o.reacquire_min_score},
+                     {"window_growth", &o.window_growth},
+                     {"max_range_m", &o.max_range_m},
+                     {"degenerate_eigen_ratio", &o.degenerate_eigen_ratio},
+                     {"along_probe_m", &o.along_probe_m},
+                     {"along_min_drop", &o.along_min_drop},
+                     {"recast_min_m", &o.recast_min_m},
+                     {"recast_min_rad", &o.recast_min_rad},
+                     {"along_search_m", &o.along_search_m},
+                     {"along_search_step_m", &o.along_search_step_m},
+                     {"matcher.threshold_m", &o.matcher.threshold_m},
+                     {"plan_adaptation.association_m", &o.plan_adaptation.association_m},
+                     {"plan_adaptation.end_margin_m", &o.plan_adaptation.end_margin_m},
+                     {"plan_adaptation.min_other_information", &o.plan_adaptation.min_other_information},
+                     {"plan_adaptation.min_offset_m", &o.plan_adaptation.min_offset_m},
+                     {"plan_adaptation.max_spread_m", &o.plan_adaptation.max_spread_m},
+                     {"plan_adaptation.wall_sigma_m", &o.plan_adaptation.wall_sigma_m},
+                     {"plan_adaptation.prior_sigma_m", &o.plan_adaptation.prior_sigma_m},
+                     {"plan_adaptation.prior_sigma_per_m", &o.plan_adaptation.prior_sigma_per_m},
+                     {"plan_adaptation.prior_facing_sigma_m", &o.plan_adaptation.prior_facing_sigma_m},
+                     {"global.boundary_fraction", &chain.tracker.boundary_fraction},
+                     {"global.agreement_tolerance_m", &chain.global.agreement_tolerance_m},
+                     {"global.min_decide_return_fraction", &chain.tracker.min_decide_return_fraction}};
+  targets.ints = {{"min_hits", &o.min_hits},
+                  {"outside_after_failures", &o.outside_after_failures},
+                  {"oversample", &o.oversample},
+                  {"global.freeze_history_keyframes", &chain.tracker.freeze_history_keyframes},
+                  {"global.freeze_ranking", &chain.tracker.freeze_ranking},
+                  {"global.return_fit_keyframes", &chain.tracker.return_fit_keyframes},
+                  {"global.min_followed_keyframes", &chain.tracker.min_followed_keyframes},
+                  {"global.min_decide_return_keyframes", &chain.tracker.min_decide_return_keyframes},
+                  {"relocalise_after_rounds", &chain.relocalise_after_rounds},
+                  {"plan_adaptation.min_points", &o.plan_adaptation.min_points},
+                  {"plan_adaptation.min_rounds", &o.plan_adaptation.min_rounds}};
+  targets.flags = {{"global.answer_on_plan", &chain.tracker.answer_on_plan},
+                   {"plan_adaptation.enabled", &o.plan_adaptation.enabled}};
+  for (const std::string& text : settings) {
+    if (text.starts_with(kSmooth)) continue;  // SmootherOptions, with --smooth
+    if (text.starts_with(kOdometry)) {
+      odometry_settings.push_back(text.substr(kOdometry.size()));
+      continue;
+    }
+    const Setting setting = ParseSetting(text);
+    if (setting.name == "global.compass_tolerance_deg") {
+      chain.compass_tolerance_rad = setting.value * kDeg;
+    } else if (setting.name == "window.size_xy_m") {
+      o.window.size_x_m = o.window.size_y_m = setting.value;
+    } else if (setting.name == "max_window.size_xy_m") {
+      o.max_window.size_x_m = o.max_window.size_y_m = setting.value;
+    } else if (!ApplySetting(targets, setting)) {
+      throw std::runtime_error("--set: unknown option '" + setting.name + "' (see docs/localisation.md)");
+    }
+  }
+  ApplyOdometrySettings(odometry_settings, chain.odometry);
+}
+
+// Applies --set smooth.NAME=VALUE to the offline smoother (names as in TrajectorySmootherOptions,
+// validated by SmoothTrajectory); unknown names are errors.
+localisation::TrajectorySmootherOptions SmootherOptions(const std::vector<std::string>& settings) {
+  localisation::TrajectorySmootherOptions o;
+  SettingTargets targets;
+  targets.doubles = {
+      {"smooth.round_sigma_m", &o.round_sigma_m},
+      {"smooth.degenerate_along_sigma_m", &o.degenerate_along_sigma_m},
+      {"smooth.odometry_sigma_m", &o.odometry_sigma_m},
+      {"smooth.odometry_sigma_per_m", &o.odometry_sigma_per_m},
+      {"smooth.odometry_sigma_rad", &o.odometry_sigma_rad},
+      {"smooth.odometry_sigma_rad_per_rad", &o.odometry_sigma_rad_per_rad},
+      {"smooth.odometry_sigma_rad_per_m", &o.odometry_sigma_rad_per_m},
+      {"smooth.start_sigma_m", &o.start_sigma_m}};
+  for (const std::string& text : settings) {
+    if (!text.starts_with("smooth.")) continue;
+    const Setting setting = ParseSetting(text);
+    if (setting.name == "smooth.round_sigma_deg") {
+      o.round_sigma_rad = setting.value * kDeg;
+    } else if (!ApplySetting(targets, setting)) {
+      throw std::runtime_error("--set: unknown option '" + setting.name + "' (see docs/localisation.md)");
+    }
+  }
+  return o;
+}
+
+}  // namespace pena::cli::localise
