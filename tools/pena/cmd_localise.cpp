@@ -6,20 +6,17 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "cli_support.hpp"
 #include "cmd_localise.hpp"
 #include "spread_source.hpp"
 #include "commands.hpp"
-#include "odometry_settings.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/plan_reader.hpp"
 #include "pena/io/trajectory_io.hpp"
