@@ -169,7 +169,7 @@ std::optional<PlanAdaptation::PoseError> PlanAdaptation::ErrorFromOthers(int mea
       seen_lines.push_back(other);
       ++facing_lines;
     }
-    for (const Half& half : Halves(support[i], FrameOf(plan_[i])->along)) {
+    for (const Half& half : support[i].halves) {
       rows.push_back({Row(other_normal, half.centroid_m, view.origin_m), half.median_m, 1.0});
     }
   }
@@ -233,7 +233,12 @@ std::vector<PlanAdaptation::Measurement> PlanAdaptation::PriorRows(const RoundVi
 
 bool PlanAdaptation::Observe(const scan_matching::Points2& map_points, const RoundView& view) {
   if (!options_.enabled || map_points.empty()) return false;
-  const std::vector<Support> support = Associate(map_points);
+  std::vector<Support> support = Associate(map_points);
+  // Each wall's halves once per round: every measured wall uses all the others'.
+  for (std::size_t i = 0; i < support.size(); ++i) {
+    if (static_cast<int>(support[i].points.size()) < options_.min_points) continue;
+    support[i].halves = Halves(support[i], FrameOf(plan_[i])->along);
+  }
   bool moved = false;
   for (std::size_t i = 0; i < support.size(); ++i) {
     if (static_cast<int>(support[i].points.size()) < options_.min_points) continue;

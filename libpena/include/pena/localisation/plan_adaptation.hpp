@@ -85,14 +85,16 @@ class PlanAdaptation {
   struct Evidence {
     std::vector<double> offsets_m;  // one per round that measured the segment
   };
-  // The returns of one round on one segment, with their signed distances along its normal.
-  struct Support {
-    scan_matching::Points2 points;
-    std::vector<double> residuals_m;
-  };
   struct Half {
     Eigen::Vector2d centroid_m;
     double median_m;
+  };
+  // The returns of one round on one segment, with their signed distances along its normal, and
+  // the median of each half along it (filled for segments with min_points returns).
+  struct Support {
+    scan_matching::Points2 points;
+    std::vector<double> residuals_m;
+    std::vector<Half> halves;
   };
   // The pose error of the round (x, y in the map frame, heading about the body) where the other
   // walls and the motion prior put it, and its covariance (units: wall_sigma_m^2).
