@@ -50,9 +50,11 @@ LaserOdometryOptions GyroGateOptions() {
 
 // The whole walk (158 s). With the defaults it ends 31.4 deg off (measured when the test was
 // written, and the test fails that way with the three options at 0; not asserted, so that
-// other changes to the default chain cannot break this test). With the options 0.9 deg. Single
-// gated scans may still be output up to 18 deg off (a gated scan's pose is the match's), so
-// only the heading at the end and over the last 5 s, after the lobby, is checked.
+// other changes to the default chain cannot break this test). With the options 0.9 deg; since
+// the simulated stride sensor reports the step that ends at a stand (session 21), 34.7 deg and
+// 3.3 m at the end with the defaults, at most 4.2 deg over the last 5 s and 1.3 m with the
+// options. Single gated scans may still be output up to 18 deg off (a gated scan's pose is the
+// match's), so only the heading over the last 5 s, after the lobby, is checked.
 TEST(GyroGate, LobbyFloorHitsDoNotTurnTheFirefighter) {
   const sim::EntityRecording& ff1 = Firefighter1();
   const std::vector<OdometryEstimate> estimates = Replay(GyroGateOptions());
@@ -63,12 +65,12 @@ TEST(GyroGate, LobbyFloorHitsDoNotTurnTheFirefighter) {
     if (ff1.truth[i].stamp_s < ff1.truth.back().stamp_s - 5.0) continue;
     const double error_rad = geometry::NormalizeAngle(estimates[i].world_from_body.theta_rad -
                                                       ff1.truth[i].world_from_body.theta_rad);
-    EXPECT_LT(std::abs(error_rad), 3.0 * kDeg) << "at " << ff1.truth[i].stamp_s << " s";
+    EXPECT_LT(std::abs(error_rad), 5.0 * kDeg) << "at " << ff1.truth[i].stamp_s << " s";
   }
   EXPECT_GT(gated, 0) << "the lobby's aliased matches should be gated";
   const geometry::Pose2& end = estimates.back().world_from_body;
   const geometry::Pose2& truth = ff1.truth.back().world_from_body;
-  EXPECT_LT(std::hypot(end.x_m - truth.x_m, end.y_m - truth.y_m), 1.0);  // defaults: 3.0 m
+  EXPECT_LT(std::hypot(end.x_m - truth.x_m, end.y_m - truth.y_m), 1.5);  // defaults: 3.0-3.3 m
 }
 
 }  // namespace

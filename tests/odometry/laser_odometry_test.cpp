@@ -108,14 +108,17 @@ TEST(LaserOdometry, CarriesOnThroughBadInput) {
 
 // One entity walking or driving from x 0 to end_x along a 2 m wide, 200 m long corridor (its ends
 // beyond the laser's range).
-sim::EntityRecording CorridorRun(const std::string& kind, double speed_m_s, double end_x_m) {
+sim::EntityRecording CorridorRun(const std::string& kind, double speed_m_s, double end_x_m,
+                                 std::uint64_t seed = 1) {
   const std::string id = kind == "robot" ? "robot1" : "ff1";
   const sim::Scenario scenario = sim::ParseScenario(
       "pena-scenario 1\nname corridor\nwall -100 0 100 0\nwall -100 2 100 2\nentity " + id + " " +
           kind + " 0 1 0 speed=" + std::to_string(speed_m_s) + "\nwaypoint " + id + " " +
           std::to_string(end_x_m) + " 1\n",
       "test:corridor");
-  return sim::Simulator{sim::SimulationOptions{}}.Run(scenario).entities.front();
+  sim::SimulationOptions options;
+  options.seed = seed;
+  return sim::Simulator{options}.Run(scenario).entities.front();
 }
 
 // A straight featureless corridor longer than the laser's range: matching cannot see motion
@@ -184,27 +187,38 @@ TEST(LaserOdometry, PersonInACorridorHasNoStrideSawTooth) {
 
 // The pace check (pace_check_*, on by default with spread strides): in a 60 m corridor whose only
 // returns across it are the walker's own floor hits, matches slide back towards the keyframes;
-// the walk's pace over the last 4 m holds them to the dead reckoning along the corridor.
-TEST(LaserOdometry, PaceCheckHoldsACorridorSlideBack) {
-  const sim::EntityRecording person = CorridorRun("human", 1.0, 60.0);
+// the walk's pace over the last 4 m holds them to the dead reckoning along the corridor. Which
+// walks slide, and how far, is down to the draw: one walk can go either way (seed 1 is worse with
+// the check since the simulated stride sensor reports the step that ends at a stop), so the test
+// takes ten walks.
+TEST(LaserOdometry, PaceCheckHoldsCorridorSlidesBack) {
   LaserOdometryOptions off;
   off.pace_check_tolerance = 0.0;
-  const Replayed checked = Replay(person);
-  const Replayed unchecked = Replay(person, off);
-  auto along_rms_m = [&](const Replayed& run) {
-    double sum_m2 = 0.0;
-    for (std::size_t i = 0; i < run.estimates.size(); ++i) {
-      const double e = run.estimates[i].world_from_body.x_m - person.truth[i].world_from_body.x_m;
-      sum_m2 += e * e;
-    }
-    return std::sqrt(sum_m2 / static_cast<double>(run.estimates.size()));
-  };
-  EXPECT_GT(checked.counts.pace_held, 0);
-  EXPECT_EQ(unchecked.counts.pace_held, 0);
-  EXPECT_LT(along_rms_m(checked), along_rms_m(unchecked))
-      << "with " << along_rms_m(checked) << " m, without " << along_rms_m(unchecked) << " m";
-  std::printf("[ figures  ] corridor along-track RMS: pace check %.3f m, without %.3f m (%ld held)\n",
-              along_rms_m(checked), along_rms_m(unchecked), checked.counts.pace_held);
+  double checked_sum_m = 0.0, unchecked_sum_m = 0.0;
+  long held = 0;
+  constexpr int kWalks = 10;
+  for (std::uint64_t seed = 1; seed <= kWalks; ++seed) {
+    const sim::EntityRecording person = CorridorRun("human", 1.0, 60.0, seed);
+    const Replayed checked = Replay(person);
+    const Replayed unchecked = Replay(person, off);
+    auto along_rms_m = [&](const Replayed& run) {
+      double sum_m2 = 0.0;
+      for (std::size_t i = 0; i < run.estimates.size(); ++i) {
+        const double e = run.estimates[i].world_from_body.x_m - person.truth[i].world_from_body.x_m;
+        sum_m2 += e * e;
+      }
+      return std::sqrt(sum_m2 / static_cast<double>(run.estimates.size()));
+    };
+    EXPECT_EQ(unchecked.counts.pace_held, 0);
+    held += checked.counts.pace_held;
+    checked_sum_m += along_rms_m(checked);
+    unchecked_sum_m += along_rms_m(unchecked);
+  }
+  EXPECT_GT(held, 0);
+  EXPECT_LT(checked_sum_m, 0.95 * unchecked_sum_m)
+      << "mean with " << checked_sum_m / kWalks << " m, without " << unchecked_sum_m / kWalks << " m";
+  std::printf("[ figures  ] corridor along-track RMS, mean of %d walks: pace check %.3f m, without %.3f m (%ld held)\n",
+              kWalks, checked_sum_m / kWalks, unchecked_sum_m / kWalks, held);
 }
 
 TEST(LaserOdometry, RefusesAPaceCheckOutOfRangeNamingTheField) {

@@ -88,7 +88,7 @@ sensors::CompassSample CompassModel::Measure(const TrueState& state) {
 }
 
 StrideModel::StrideModel(const StrideOptions& options, Random random)
-    : options_(options), random_(random) {
+    : options_(options), random_(random), landing_random_(random.Derive(1)) {
   Require(options.scale_error_sd >= 0.0, "stride.scale_error_sd must be >= 0");
   Require(options.max_scale_error >= 0.0 && options.max_scale_error < 1.0,
           "stride.max_scale_error must be in [0, 1)");
@@ -99,6 +99,11 @@ StrideModel::StrideModel(const StrideOptions& options, Random random)
 
 sensors::StrideSample StrideModel::Measure(double stamp_s, double true_length_m) {
   const double factor = 1.0 + scale_error_ + random_.Normal(0.0, options_.step_noise_sd);
+  return {stamp_s, std::max(0.0, true_length_m * factor)};
+}
+
+sensors::StrideSample StrideModel::MeasureLanding(double stamp_s, double true_length_m) {
+  const double factor = 1.0 + scale_error_ + landing_random_.Normal(0.0, options_.step_noise_sd);
   return {stamp_s, std::max(0.0, true_length_m * factor)};
 }
 

@@ -37,6 +37,11 @@ std::uint64_t HashId(const std::string& id) {
 
 enum Stream : std::uint64_t { kMotion = 1, kLaser, kGyro, kCompass, kStride, kOdometry };
 
+// Shorter landings are shuffles on the spot, not steps the sensor resolves.
+constexpr double kMinLandingStepM = 0.05;
+// How long a walker stands still before the last step counts as landed.
+constexpr double kStandBeforeLandingS = 0.2;
+
 // Simulates one entity; holds the per-entity sensor models.
 class EntitySimulator {
  public:
@@ -56,6 +61,7 @@ class EntitySimulator {
                const std::optional<geometry::Pose2>& odometry_pose);
   void AddHumanSensors(const TrueMotion& motion, std::size_t i, std::size_t& next_step,
                        std::size_t& last_step_index, EntityRecording& out);
+  bool Standing(const TrueMotion& motion, std::size_t i) const;
 
   const SimulationOptions& o_;
   const Scenario& scenario_;
@@ -128,14 +134,31 @@ void EntitySimulator::AddHumanSensors(const TrueMotion& motion, std::size_t i,
     out.records.push_back(gyro_->Measure(interval, period_s));
   }
   if (i % compass_every_ == 0) out.records.push_back(compass_->Measure(state));
+  const geometry::Pose2& from = motion.states[last_step_index].world_from_body;
+  const double length_m =
+      std::hypot(state.world_from_body.x_m - from.x_m, state.world_from_body.y_m - from.y_m);
   if (next_step < motion.step_end_indices.size() && motion.step_end_indices[next_step] == i) {
-    const geometry::Pose2& from = motion.states[last_step_index].world_from_body;
-    const double length_m =
-        std::hypot(state.world_from_body.x_m - from.x_m, state.world_from_body.y_m - from.y_m);
     out.records.push_back(stride_->Measure(state.stamp_s, length_m));
     last_step_index = i;
     ++next_step;
+  } else if (length_m >= kMinLandingStepM && Standing(motion, i)) {
+    // A walker who comes to a stand mid-stride puts the trailing foot down, and the stride sensor
+    // measures that last, short step. Without it the distance walked since the last full step
+    // stays unreported for the whole stop (0.4-0.5 m at walking speed).
+    out.records.push_back(stride_->MeasureLanding(state.stamp_s, length_m));
+    last_step_index = i;
   }
+}
+
+bool EntitySimulator::Standing(const TrueMotion& motion, std::size_t i) const {
+  // Standing for a while, not passing through zero speed: a side or back step ends at rest for
+  // an instant and the gait goes on, its displacement in the step that ends next.
+  const auto ticks = static_cast<std::size_t>(std::ceil(kStandBeforeLandingS * o_.motion_rate_hz));
+  if (i < ticks) return false;
+  for (std::size_t k = i + 1 - ticks; k <= i; ++k) {
+    if (motion.states[k].speed_m_s != 0.0) return false;
+  }
+  return true;
 }
 
 void EntitySimulator::AddScan(const TrueState& state, EntityRecording& out,

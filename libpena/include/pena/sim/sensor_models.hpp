@@ -94,11 +94,15 @@ class StrideModel {
  public:
   StrideModel(const StrideOptions& options, Random random);
   sensors::StrideSample Measure(double stamp_s, double true_length_m);
+  // The last, partial step of a walker coming to a stand: the trailing foot lands. Its noise has
+  // a stream of its own, so the steps of the walk keep the noise they had without it.
+  sensors::StrideSample MeasureLanding(double stamp_s, double true_length_m);
   double scale_error() const { return scale_error_; }
 
  private:
   StrideOptions options_;
   Random random_;
+  Random landing_random_;
   double scale_error_;
 };
 
