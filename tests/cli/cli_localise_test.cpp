@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <sstream>
 #include <string>
 
 #include "pena/io/line_csv.hpp"
@@ -48,11 +49,13 @@ double MidpointToNearest(const geometry::Segment2& s, const std::vector<io::Line
 
 // The office plan draws some walls 0.3-0.6 m off: the walls pena localise moves must end up
 // nearer the true ones (floorplan.csv), listed in plan-shifts.csv and summary.json.
+// (The openings it cuts are checked on their own below: here they are off.)
 TEST(CliLocalise, PlanAdaptationMovesDrawnOffWallsTowardsTheTrueOnes) {
   const auto mission = FreshDir("loc_adapt_sim");
   ASSERT_EQ(RunPena("simulate --scenario office --seed 2 --out " + mission.string()).exit_code, 0);
   const std::string inputs = "localise --quiet --log " + (mission / "ff1" / "sensors.penalog").string() +
-                             " --map " + (mission / "apriori.csv").string();
+                             " --map " + (mission / "apriori.csv").string() +
+                             " --set plan_adaptation.openings.enabled=0";
   const auto adapted = FreshDir("loc_adapt_out");
   const PenaRun run = RunPena(inputs + " --out " + adapted.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -77,6 +80,56 @@ TEST(CliLocalise, PlanAdaptationMovesDrawnOffWallsTowardsTheTrueOnes) {
   ASSERT_EQ(RunPena(inputs + " --out " + off.string() + " --set plan_adaptation.enabled=0").exit_code, 0);
   EXPECT_FALSE(std::filesystem::exists(off / "plan-adapted.csv"));
   EXPECT_NE(ReadBytes(off / "summary.json").find("\"plan_shifts\": []"), std::string::npos);
+}
+
+// The office plan draws the passage at x 22 and the corridor's west end shut: pena localise cuts
+// them open where the rounds see through (plan-openings.csv), and no real wall.
+TEST(CliLocalise, PlanAdaptationCutsOpeningsTheDrawingClosed) {
+  const auto mission = FreshDir("loc_open_sim");
+  ASSERT_EQ(RunPena("simulate --scenario office --seed 2 --out " + mission.string()).exit_code, 0);
+  const auto out = FreshDir("loc_open_out");
+  const PenaRun run = RunPena("localise --quiet --log " + (mission / "ff1" / "sensors.penalog").string() +
+                              " --map " + (mission / "apriori.csv").string() + " --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("opening(s) cut"), std::string::npos) << run.out;
+  const std::vector<io::LineRow> drawn = io::ReadLineCsv(mission / "apriori.csv");
+  const std::vector<io::LineRow> walls = io::ReadLineCsv(mission / "floorplan.csv");
+  std::istringstream cuts(ReadBytes(out / "plan-openings.csv"));
+  std::string line;
+  std::getline(cuts, line);
+  EXPECT_EQ(line, "id,from_m,to_m,rounds,added_id");
+  int on_drawn = 0, added = 0;
+  while (std::getline(cuts, line)) {
+    std::istringstream fields(line);
+    std::string id, from, to, rounds, added_id;
+    std::getline(fields, id, ',');
+    std::getline(fields, from, ',');
+    std::getline(fields, to, ',');
+    std::getline(fields, rounds, ',');
+    std::getline(fields, added_id, ',');
+    added += std::stoi(added_id) >= 0 ? 1 : 0;
+    const auto index = static_cast<std::size_t>(std::stoi(id));
+    if (index >= drawn.size()) continue;  // a part appended by an earlier cut
+    ++on_drawn;
+    const geometry::Segment2& s = drawn[index].segment;
+    const Eigen::Vector2d along = (s.end_m - s.start_m).normalized();
+    const geometry::Segment2 stretch{s.start_m + std::stod(from) * along, s.start_m + std::stod(to) * along};
+    // No true wall runs along the drawn one there, even drawn 0.6 m off (the passage's own
+    // walls meet it across).
+    const Eigen::Vector2d mid = 0.5 * (stretch.start_m + stretch.end_m);
+    for (const io::LineRow& w : walls) {
+      const Eigen::Vector2d d = w.segment.end_m - w.segment.start_m;
+      const double length_m = d.norm();
+      if (std::abs(d.x() * along.y() - d.y() * along.x()) / length_m > 0.17) continue;  // not parallel
+      const Eigen::Vector2d rel = mid - w.segment.start_m;
+      const double on_m = rel.dot(d) / length_m;
+      const double across_m = std::abs(rel.x() * d.y() - rel.y() * d.x()) / length_m;
+      EXPECT_FALSE(on_m > 0.0 && on_m < length_m && across_m < 0.6) << "cut a real wall: " << line;
+    }
+  }
+  EXPECT_GE(on_drawn, 2);
+  EXPECT_EQ(io::ReadLineCsv(out / "plan-adapted.csv").size(), drawn.size() + static_cast<std::size_t>(added));
+  EXPECT_NE(ReadBytes(out / "summary.json").find("\"plan_openings\": [{\"id\": "), std::string::npos);
 }
 
 TEST(CliLocalise, ASmootherSettingWithoutSmoothIsAClearError) {

@@ -97,6 +97,7 @@ Run RunChain(const LocaliseArgs& args, io::LogSource& source, std::vector<geomet
   while (const auto record = source.Next()) feed(*record);
   run.wall_s = SecondsSince(started);
   run.plan_shifts = chain.plan_shifts();
+  run.plan_openings = chain.plan_openings();
   run.adapted_plan = chain.plan();
   return run;
 }
@@ -113,6 +114,13 @@ void PrintResult(const LocaliseArgs& args, const Run& run, const std::optional<T
     std::cout << "plan adaptation: " << run.plan_shifts.size() << " segment(s) moved:";
     for (const localisation::SegmentShift& shift : run.plan_shifts) {
       std::cout << " #" << shift.index << " " << Fixed(shift.offset_m, 2) << " m";
+    }
+    std::cout << '\n';
+  }
+  if (!run.plan_openings.empty()) {
+    std::cout << "plan adaptation: " << run.plan_openings.size() << " opening(s) cut:";
+    for (const localisation::PlanOpening& cut : run.plan_openings) {
+      std::cout << " #" << cut.index << " " << Fixed(cut.from_m, 1) << "-" << Fixed(cut.to_m, 1) << " m";
     }
     std::cout << '\n';
   }
@@ -142,7 +150,7 @@ void RunLocalise(const LocaliseArgs& args) {
   io::WriteTum(out_dir / "trajectory.tum", estimate);
   if (args.smooth) io::WriteTum(out_dir / "trajectory-online.tum", online);
   WriteStatusCsv(out_dir / "status.csv", run);
-  const bool adapted = !run.plan_shifts.empty();
+  const bool adapted = !run.plan_shifts.empty() || !run.plan_openings.empty();
   if (adapted) WriteAdaptedPlan(out_dir, run);
   const geometry::Trajectory truth = TruthNextTo(*source);
   std::optional<TruthErrors> errors, online_errors;
@@ -156,7 +164,7 @@ void RunLocalise(const LocaliseArgs& args) {
   PrintResult(args, run, errors, online_errors);
   std::cout << "wrote " << (out_dir / "trajectory.tum").string() << (args.smooth ? ", trajectory-online.tum" : "")
             << ", status.csv, summary.json, localisation.png"
-            << (adapted ? ", plan-adapted.csv, plan-shifts.csv" : "") << '\n';
+            << (adapted ? ", plan-adapted.csv, plan-shifts.csv, plan-openings.csv" : "") << '\n';
 }
 
 }  // namespace

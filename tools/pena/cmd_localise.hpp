@@ -43,6 +43,7 @@ struct Run {
   double wall_s = 0.0;
   // With plan adaptation: the walls the rounds moved, and the plan as matched at the end.
   std::vector<localisation::SegmentShift> plan_shifts;
+  std::vector<localisation::PlanOpening> plan_openings;
   std::vector<geometry::Segment2> adapted_plan;
 };
 

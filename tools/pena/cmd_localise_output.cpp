@@ -75,6 +75,14 @@ void WriteAdaptedPlan(const std::filesystem::path& out_dir, const Run& run) {
     out << shift.index << ',' << Fixed(shift.offset_m, 4) << ',' << shift.rounds << '\n';
   }
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
+  const std::filesystem::path openings_path = out_dir / "plan-openings.csv";
+  std::ofstream openings(openings_path);
+  openings << "id,from_m,to_m,rounds,added_id\n";
+  for (const localisation::PlanOpening& cut : run.plan_openings) {
+    openings << cut.index << ',' << Fixed(cut.from_m, 3) << ',' << Fixed(cut.to_m, 3) << ',' << cut.rounds << ','
+             << cut.added_index << '\n';
+  }
+  if (!openings.flush()) throw std::runtime_error(openings_path.string() + ": cannot write");
 }
 
 TruthErrors CompareWithTruth(const geometry::Trajectory& estimate, const geometry::Trajectory& truth,
@@ -158,6 +166,17 @@ std::string ShiftsJson(const Run& run) {
   return json + "]";
 }
 
+// The openings plan adaptation cut: [{"id": i, "from_m": a, "to_m": b, "rounds": n}, ...].
+std::string OpeningsJson(const Run& run) {
+  std::string json = "[";
+  for (const localisation::PlanOpening& cut : run.plan_openings) {
+    if (json.size() > 1) json += ", ";
+    json += "{\"id\": " + std::to_string(cut.index) + ", \"from_m\": " + Fixed(cut.from_m, 3) +
+            ", \"to_m\": " + Fixed(cut.to_m, 3) + ", \"rounds\": " + std::to_string(cut.rounds) + "}";
+  }
+  return json + "]";
+}
+
 void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, const Run& run,
                   const std::optional<TruthErrors>& truth, const std::optional<TruthErrors>& truth_online) {
   const Counts c = CountRun(run);
@@ -168,6 +187,7 @@ void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, c
       << ", \"reacquired\": " << c.reacquired << ", \"outside_rounds\": " << c.outside_rounds
       << ", \"outside_scans\": " << c.outside_scans << ", \"mean_confidence\": " << Fixed(c.mean_confidence, 3)
       << ", \"global\": " << GlobalJson(run) << ", \"plan_shifts\": " << ShiftsJson(run)
+      << ", \"plan_openings\": " << OpeningsJson(run)
       << ", \"truth\": " << TruthJson(truth);
   if (args.smooth) out << ", \"smoothed\": true, \"truth_online\": " << TruthJson(truth_online);
   out << ", \"processing_wall_s\": " << Fixed(run.wall_s, 3) << "}\n";

@@ -47,6 +47,10 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                      {"plan_adaptation.prior_sigma_m", &o.plan_adaptation.prior_sigma_m},
                      {"plan_adaptation.prior_sigma_per_m", &o.plan_adaptation.prior_sigma_per_m},
                      {"plan_adaptation.prior_facing_sigma_m", &o.plan_adaptation.prior_facing_sigma_m},
+                     {"plan_adaptation.openings.through_margin_m", &o.plan_adaptation.openings.through_margin_m},
+                     {"plan_adaptation.openings.bin_m", &o.plan_adaptation.openings.bin_m},
+                     {"plan_adaptation.openings.min_width_m", &o.plan_adaptation.openings.min_width_m},
+                     {"plan_adaptation.openings.hit_m", &o.plan_adaptation.openings.hit_m},
                      {"global.boundary_fraction", &chain.tracker.boundary_fraction},
                      {"global.agreement_tolerance_m", &chain.global.agreement_tolerance_m},
                      {"global.min_decide_return_fraction", &chain.tracker.min_decide_return_fraction}};
@@ -60,9 +64,13 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                   {"global.min_decide_return_keyframes", &chain.tracker.min_decide_return_keyframes},
                   {"relocalise_after_rounds", &chain.relocalise_after_rounds},
                   {"plan_adaptation.min_points", &o.plan_adaptation.min_points},
-                  {"plan_adaptation.min_rounds", &o.plan_adaptation.min_rounds}};
+                  {"plan_adaptation.min_rounds", &o.plan_adaptation.min_rounds},
+                  {"plan_adaptation.openings.min_through_points", &o.plan_adaptation.openings.min_through_points},
+                  {"plan_adaptation.openings.min_rounds", &o.plan_adaptation.openings.min_rounds}};
   targets.flags = {{"global.answer_on_plan", &chain.tracker.answer_on_plan},
-                   {"plan_adaptation.enabled", &o.plan_adaptation.enabled}};
+                   {"reacquire_pinned", &o.reacquire_pinned},
+                   {"plan_adaptation.enabled", &o.plan_adaptation.enabled},
+                   {"plan_adaptation.openings.enabled", &o.plan_adaptation.openings.enabled}};
   for (const std::string& text : settings) {
     if (text.starts_with(kSmooth)) continue;  // SmootherOptions, with --smooth
     if (text.starts_with(kOdometry)) {

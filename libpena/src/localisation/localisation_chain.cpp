@@ -202,6 +202,7 @@ const std::vector<geometry::Segment2>& LocalisationChain::plan() const {
 }
 
 const std::vector<SegmentShift>& LocalisationChain::plan_shifts() const { return impl_->map.plan_shifts(); }
+const std::vector<PlanOpening>& LocalisationChain::plan_openings() const { return impl_->map.plan_openings(); }
 
 const odometry::OdometryCounts& LocalisationChain::odometry_counts() const {
   return impl_->odometry.counts();

@@ -70,6 +70,10 @@ void MapLocaliser::Impl::Conclude(const geometry::Pose2& odom_from_body, MapCorr
   round.status = status;
 }
 
+bool MapLocaliser::Impl::WeakReacquisition(const MapCorrection& round) const {
+  return options.reacquire_pinned && (round.degenerate || round.along_drop < options.along_min_drop);
+}
+
 MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
                                         const geometry::Pose2& odom_from_body, bool on_prior) {
   MapCorrection round;
@@ -88,6 +92,10 @@ MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
     // The odometry's own position along the weak direction came from its motion prior, which
     // may have slid (office seed 1 at 166.5 s: 0.47 m along the corridor in one keyframe).
     if (auto along = AlongSearch(scan, real, round, *found)) round = *along;
+  }
+  if (status == MapStatus::kOutsideMap && round.accepted && WeakReacquisition(round)) {
+    round.accepted = false;
+    round.correction = {};
   }
   const double walked_m = distance_m;  // since the round before (Conclude resets it)
   Conclude(odom_from_body, round);
@@ -158,6 +166,7 @@ MapStatus MapLocaliser::status() const { return impl_->status; }
 double MapLocaliser::distance_since_correction_m() const { return impl_->distance_m; }
 const VirtualScanner& MapLocaliser::scanner() const { return impl_->scanner; }
 const std::vector<SegmentShift>& MapLocaliser::plan_shifts() const { return impl_->adaptation.shifts(); }
+const std::vector<PlanOpening>& MapLocaliser::plan_openings() const { return impl_->adaptation.openings(); }
 
 const char* ToString(MapStatus status) {
   switch (status) {

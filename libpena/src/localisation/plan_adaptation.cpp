@@ -30,7 +30,6 @@ std::optional<Frame> FrameOf(const geometry::Segment2& s) {
   return Frame{along, Eigen::Vector2d(-along.y(), along.x()), length};
 }
 
-
 // Two segments within these of one line are one wall (drawn with one error).
 constexpr double kCollinearRad = 0.035;  // 2 deg
 constexpr double kCollinearM = 0.05;
@@ -95,10 +94,11 @@ void ValidatePlanAdaptationOptions(const PlanAdaptationOptions& o) {
   Require(o.prior_sigma_rad > 0.0, "prior_sigma_rad", "> 0 rad", o.prior_sigma_rad);
   Require(o.prior_sigma_rad_per_m >= 0.0, "prior_sigma_rad_per_m", ">= 0 rad/m", o.prior_sigma_rad_per_m);
   Require(o.prior_facing_sigma_m >= 0.0, "prior_facing_sigma_m", ">= 0 m", o.prior_facing_sigma_m);
+  ValidatePlanOpeningsOptions(o.openings);
 }
 
 PlanAdaptation::PlanAdaptation(const PlanAdaptationOptions& options, std::vector<geometry::Segment2> plan)
-    : options_(options), plan_(std::move(plan)), evidence_(plan_.size()) {
+    : options_(options), plan_(std::move(plan)), evidence_(plan_.size()), openings_(options.openings) {
   ValidatePlanAdaptationOptions(options_);
 }
 
@@ -245,7 +245,10 @@ bool PlanAdaptation::Observe(const scan_matching::Points2& map_points, const Rou
     const std::optional<double> offset = OffsetAgainstOthers(static_cast<int>(i), support, view);
     if (offset) moved = Weigh(static_cast<int>(i), *offset) || moved;
   }
-  return moved;
+  const std::vector<PlanOpening> cuts = openings_.Observe(map_points, view.origin_m, plan_);
+  evidence_.resize(plan_.size());
+  for (const PlanOpening& cut : cuts) evidence_[static_cast<std::size_t>(cut.index)] = {};
+  return moved || !cuts.empty();
 }
 
 bool PlanAdaptation::Weigh(int segment, double offset_m) {

@@ -86,6 +86,7 @@ class LocalisationChain {
   // those moves.
   const std::vector<geometry::Segment2>& plan() const;
   const std::vector<SegmentShift>& plan_shifts() const;
+  const std::vector<PlanOpening>& plan_openings() const;
 
  private:
   struct Impl;

@@ -59,6 +59,13 @@ struct MapLocaliserOptions {
   // odometry.prior_gate_agree_gyro_m = 0.1: 0.47 m in one keyframe at 166.5 s). 0: off.
   double along_search_m = 1.0;
   double along_search_step_m = 0.25;
+  // A re-acquisition (the first accepted round after being outside the plan, in the grown
+  // window) needs a place the scan pins down in every direction: a round that is degenerate,
+  // or along whose weak direction eq. 2 falls by less than along_min_drop, is refused and the
+  // entity stays outside. In a corridor the wide window's best place along it is a look-alike as
+  // often as not (office seeds 1 and 3 re-entering from the west wing once its end wall was cut
+  // open, plan_openings.hpp: 1.4-1.6 m along, score 0.86). false: off.
+  bool reacquire_pinned = true;
   // Beyond the paper: a round at every scan, not only at reference changes, so a single badly
   // matched odometry scan (a corridor along which the odometry slid) is corrected as well.
   bool every_scan = false;
@@ -132,6 +139,7 @@ class MapLocaliser {
   // The plan as matched now: the a priori one with the walls the rounds moved (plan_adaptation).
   const VirtualScanner& scanner() const;
   const std::vector<SegmentShift>& plan_shifts() const;
+  const std::vector<PlanOpening>& plan_openings() const;
 
  private:
   struct Impl;

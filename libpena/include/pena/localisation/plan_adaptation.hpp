@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pena/geometry/segment2.hpp"
+#include "pena/localisation/plan_openings.hpp"
 #include "pena/scan_matching/point_set.hpp"
 
 namespace pena::localisation {
@@ -47,6 +48,9 @@ struct PlanAdaptationOptions {
   // and 0.10 m moved a right wall on team seed 1 ff1 (0.15: no wrong move in 17 runs).
   double min_offset_m = 0.15;
   double max_spread_m = 0.08;   // standard deviation of its rounds' offsets above which it stays
+  // Walls drawn across real openings are cut where the rounds see far through them
+  // (plan_openings.hpp; docs/localisation.md, "Plan adaptation").
+  PlanOpeningsOptions openings;
 };
 
 // Throws std::invalid_argument naming the field and unit.
@@ -74,12 +78,15 @@ class PlanAdaptation {
   PlanAdaptation(const PlanAdaptationOptions& options, std::vector<geometry::Segment2> plan);
 
   // One accepted round: the real returns in the map frame at the corrected pose, and where the
-  // laser was. Returns true when a segment was moved (the caller re-casts from the new plan).
+  // laser was. Returns true when a segment was moved or cut (the caller re-casts from the new
+  // plan).
   bool Observe(const scan_matching::Points2& map_points, const RoundView& view);
 
   const std::vector<geometry::Segment2>& plan() const { return plan_; }
   // The segments moved so far, in the order they were first moved.
   const std::vector<SegmentShift>& shifts() const { return shifts_; }
+  // The openings cut so far, in order.
+  const std::vector<PlanOpening>& openings() const { return openings_.openings(); }
 
  private:
   struct Evidence {
@@ -131,6 +138,7 @@ class PlanAdaptation {
   std::vector<geometry::Segment2> plan_;
   std::vector<Evidence> evidence_;
   std::vector<SegmentShift> shifts_;
+  PlanOpenings openings_;
 };
 
 }  // namespace pena::localisation
