@@ -84,6 +84,9 @@ TEST(PlanOpenings, AWallDrawnAcrossAPassageIsCutWhereTheRoundsSeeThrough) {
   EXPECT_GE(cuts[0].rounds, 3);
   EXPECT_EQ(cuts[0].added_index, 4);
   EXPECT_NEAR(plan[1].end_m.x(), cuts[0].from_m, 1e-9);
+  EXPECT_NEAR(cuts[0].stretch.start_m.x(), cuts[0].from_m, 1e-9);  // on the map: the wall starts at x 0
+  EXPECT_NEAR(cuts[0].stretch.end_m.x(), cuts[0].to_m, 1e-9);
+  EXPECT_NEAR(cuts[0].stretch.end_m.y(), 0.0, 1e-9);
   EXPECT_EQ(openings.openings().size(), cuts.size());
   // The opening is x 4-6; beams crossing near the jambs end less than 1 m behind the line.
   for (const double x : {4.4, 4.8, 5.2, 5.6}) EXPECT_FALSE(WallAt(plan, x)) << "x " << x;

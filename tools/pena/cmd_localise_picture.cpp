@@ -26,6 +26,10 @@ cv::Mat Picture(const Run& run, const std::vector<geometry::Segment2>& plan, con
   std::vector<geometry::Segment2> moved;  // where plan adaptation put the walls it moved
   for (const auto& shift : run.plan_shifts) moved.push_back(run.adapted_plan[static_cast<std::size_t>(shift.index)]);
   canvas.DrawSegments(moved, viz::colors::kOrange, 2);
+  std::vector<geometry::Segment2> cut;  // stretches of drawn walls the rounds saw through
+  for (const auto& opening : run.plan_openings) cut.push_back(opening.stretch);
+  canvas.DrawSegments(cut, viz::colors::kWhite, 4);
+  canvas.DrawSegments(cut, viz::colors::kTeal, 1);
   std::vector<Eigen::Vector2d> truth_m;
   for (const auto& t : truth) truth_m.emplace_back(t.pose.x_m, t.pose.y_m);
   if (!truth_m.empty()) canvas.DrawPolyline(truth_m, viz::colors::kGreen, 1);
@@ -47,6 +51,7 @@ cv::Mat Picture(const Run& run, const std::vector<geometry::Segment2>& plan, con
   canvas.DrawText(hi + Eigen::Vector2d(-0.5 * (hi.x() - lo.x()), 0.7), title, viz::colors::kBlack);
   canvas.AddLegendEntry("a priori plan", viz::colors::kBlack);
   if (!moved.empty()) canvas.AddLegendEntry("walls moved where seen", viz::colors::kOrange);
+  if (!cut.empty()) canvas.AddLegendEntry("walls cut open", viz::colors::kTeal);
   canvas.AddLegendEntry("path, matched on the plan", viz::colors::kBlue);
   canvas.AddLegendEntry("path, outside the plan", viz::colors::kRed);
   canvas.AddLegendEntry("re-acquired", viz::colors::kPurple);

@@ -160,7 +160,7 @@ std::vector<PlanOpening> PlanOpenings::Cut(std::vector<geometry::Segment2>& plan
     const bool keep_before = from_m >= kKeepM;
     const bool keep_after = length_m - to_m >= kKeepM;
     if (!keep_before && !keep_after) continue;  // all of it open: left to the shifts and rounds
-    PlanOpening cut{static_cast<int>(i), from_m, to_m, bins.through[first], -1};
+    PlanOpening cut{static_cast<int>(i), from_m, to_m, {before.end_m, after.start_m}, bins.through[first], -1};
     // The parts keep what their stretches collected (the cut is on the bin grid).
     const auto slice = [&](std::size_t from, std::size_t to) {
       const auto at = [](std::size_t k) { return static_cast<std::ptrdiff_t>(k); };

@@ -32,12 +32,13 @@ struct PlanOpeningsOptions {
 };
 
 // One cut: the segment (its index before the cut), the open stretch along it in metres from its
-// start as it was, the rounds that saw through it, and the index of the part after the opening
-// (-1 when nothing is left beyond it).
+// start as it was and where that lay on the map, the rounds that saw through it, and the index of
+// the part after the opening (-1 when nothing is left beyond it).
 struct PlanOpening {
   int index = 0;
   double from_m = 0.0;
   double to_m = 0.0;
+  geometry::Segment2 stretch;
   int rounds = 0;
   int added_index = -1;
 };
