@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 namespace pena::geometry {
 namespace {
 
@@ -24,6 +26,13 @@ TEST(Segment2, RayMissesWallBehindOrBeside) {
   EXPECT_FALSE(RaySegmentIntersection({0.0, 0.0}, {-1.0, 0.0}, wall).has_value());
   EXPECT_FALSE(RaySegmentIntersection({0.0, 5.0}, {1.0, 0.0}, wall).has_value());
   EXPECT_FALSE(RaySegmentIntersection({0.0, 0.0}, {0.0, 1.0}, wall).has_value());
+}
+
+TEST(Segment2, SegmentsInBoxAreThoseWhoseBoxesOverlapIt) {
+  const std::vector<Segment2> walls{{{0, 0}, {10, 0}}, {{5, 5}, {5, 9}}, {{-3, -1}, {-1, -1}}};
+  EXPECT_EQ(SegmentsInBox(walls, {4, -1}, {6, 6}), (std::vector<int>{0, 1}));
+  EXPECT_EQ(SegmentsInBox(walls, {-2, -2}, {-1.5, 2}), (std::vector<int>{2}));
+  EXPECT_TRUE(SegmentsInBox(walls, {20, 20}, {21, 21}).empty());
 }
 
 }  // namespace

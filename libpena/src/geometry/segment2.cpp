@@ -29,4 +29,17 @@ std::optional<double> RaySegmentIntersection(const Eigen::Vector2d& origin_m,
   return range;
 }
 
+std::vector<int> SegmentsInBox(const std::vector<Segment2>& segments, const Eigen::Vector2d& low_m,
+                               const Eigen::Vector2d& high_m) {
+  std::vector<int> inside;
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const Segment2& s = segments[i];
+    if ((s.start_m.cwiseMin(s.end_m).array() <= high_m.array()).all() &&
+        (s.start_m.cwiseMax(s.end_m).array() >= low_m.array()).all()) {
+      inside.push_back(static_cast<int>(i));
+    }
+  }
+  return inside;
+}
+
 }  // namespace pena::geometry

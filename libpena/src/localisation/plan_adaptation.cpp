@@ -110,16 +110,7 @@ std::vector<int> PlanAdaptation::SegmentsNear(const scan_matching::Points2& poin
     high = high.cwiseMax(p);
   }
   const Eigen::Vector2d grow = Eigen::Vector2d::Constant(options_.association_m);
-  low -= grow;
-  high += grow;
-  std::vector<int> near;
-  for (int i = 0; i < static_cast<int>(plan_.size()); ++i) {
-    const geometry::Segment2& s = plan_[static_cast<std::size_t>(i)];
-    const Eigen::Vector2d s_low = s.start_m.cwiseMin(s.end_m);
-    const Eigen::Vector2d s_high = s.start_m.cwiseMax(s.end_m);
-    if ((s_low.array() <= high.array()).all() && (s_high.array() >= low.array()).all()) near.push_back(i);
-  }
-  return near;
+  return geometry::SegmentsInBox(plan_, low - grow, high + grow);
 }
 
 std::vector<PlanAdaptation::Support> PlanAdaptation::Associate(const scan_matching::Points2& points) const {

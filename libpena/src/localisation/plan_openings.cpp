@@ -48,14 +48,7 @@ PlanOpenings::RoundMarks PlanOpenings::Mark(const scan_matching::Points2& points
     low = low.cwiseMin(p);
     high = high.cwiseMax(p);
   }
-  std::vector<int> near;
-  for (int i = 0; i < static_cast<int>(plan.size()); ++i) {
-    const geometry::Segment2& s = plan[static_cast<std::size_t>(i)];
-    if ((s.start_m.cwiseMin(s.end_m).array() <= high.array()).all() &&
-        (s.start_m.cwiseMax(s.end_m).array() >= low.array()).all()) {
-      near.push_back(i);
-    }
-  }
+  const std::vector<int> near = geometry::SegmentsInBox(plan, low, high);
   RoundMarks marks;
   marks.through.resize(plan.size());
   marks.hit.resize(plan.size());

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <vector>
 
 namespace pena::geometry {
 
@@ -22,5 +23,9 @@ double DistanceToSegment(const Segment2& segment, const Eigen::Vector2d& point_m
 std::optional<double> RaySegmentIntersection(const Eigen::Vector2d& origin_m,
                                              const Eigen::Vector2d& direction_unit,
                                              const Segment2& segment);
+
+// Indices of the segments whose bounding boxes overlap the box [low_m, high_m].
+std::vector<int> SegmentsInBox(const std::vector<Segment2>& segments, const Eigen::Vector2d& low_m,
+                               const Eigen::Vector2d& high_m);
 
 }  // namespace pena::geometry
