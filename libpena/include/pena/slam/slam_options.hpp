@@ -17,7 +17,11 @@ struct SlamOptions {
   double loop_min_path_m = 4.0;
   int submap_keyframes = 12;         // keyframes on each side of that one in its submap
   double submap_radius_m = 12.0;     // submap points farther from its centre are left out
-  double loop_window_m = 0.6;        // half-width of the search window right after a closure
+  // Half-width of the search window right after a closure. The graph has just been made to agree
+  // with the older keyframes, so the next closure has little to correct; a wide window let
+  // corridor closures creep 0.4-0.6 m each, one after another (office seed 1: 3.4 m; 0.6 m
+  // before session 22, docs/slam.md).
+  double loop_window_m = 0.2;
   double loop_window_per_m = 0.02;   // grows by this per metre walked since the last closure
   double loop_window_max_m = 2.0;    // up to this
   double loop_window_rad = 0.08726646259971647;      // 5 deg half-width after a closure
