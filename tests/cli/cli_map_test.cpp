@@ -5,8 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <sstream>
 #include <string>
+#include <vector>
 
+#include "pena/io/trajectory_io.hpp"
 #include "run_pena.hpp"
 
 namespace pena::testing {
@@ -44,6 +48,53 @@ TEST(CliMap, SimulatedMissionWithTruePosesGivesAScorableLineMap) {
   ASSERT_EQ(eval.exit_code, 0) << eval.err;
   EXPECT_GT(JsonNumber(eval.out, "coverage"), 0.5) << eval.out;
   EXPECT_GT(JsonNumber(eval.out, "precision"), 0.5) << eval.out;
+}
+
+// Without poses `pena map` runs the odometry and the SLAM and lists the closure matches in
+// closures.csv: as many kept and dropped as it prints, each measuring its two keyframes' true
+// relative pose (office seed 5, whose SLAM map is right: docs/slam.md).
+TEST(CliMap, SlamClosuresFileListsMatchesThatAgreeWithTheTruth) {
+  const auto sim = FreshDir("map_closures_sim");
+  ASSERT_EQ(RunPena("simulate --scenario office --seed 5 --out " + sim.string()).exit_code, 0);
+  const auto out = FreshDir("map_closures_out");
+  const PenaRun run = RunPena("map --quiet --log " + (sim / "ff1" / "sensors.penalog").string() +
+                              " --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  long printed_kept = -1, printed_dropped = -1;
+  const std::size_t at = run.out.find(" closures kept (");
+  ASSERT_NE(at, std::string::npos) << run.out;
+  printed_kept = std::stol(run.out.substr(run.out.rfind(", ", at) + 2));
+  printed_dropped = std::stol(run.out.substr(at + std::string(" closures kept (").size()));
+  std::map<long, geometry::Pose2> truth;  // by stamp in milliseconds
+  for (const geometry::StampedPose2& pose : io::ReadTum(sim / "ff1" / "truth.tum")) {
+    truth[std::lround(pose.stamp_s * 1000.0)] = pose.pose;
+  }
+  std::istringstream rows(ReadBytes(out / "closures.csv"));
+  std::string row;
+  std::getline(rows, row);
+  EXPECT_EQ(row, "older_stamp,stamp,x,y,theta,prior_x,prior_y,prior_theta,score,window_m,kept");
+  long kept = 0, dropped = 0;
+  std::vector<double> errors_m;
+  while (std::getline(rows, row)) {
+    std::replace(row.begin(), row.end(), ',', ' ');
+    std::istringstream f(row);
+    double t0 = 0, t1 = 0, x = 0, y = 0, th = 0, px = 0, py = 0, pth = 0, score = 0, window = 0;
+    int is_kept = 0;
+    f >> t0 >> t1 >> x >> y >> th >> px >> py >> pth >> score >> window >> is_kept;
+    ASSERT_TRUE(f) << row;
+    EXPECT_LT(t0, t1);
+    EXPECT_GE(score, 0.6);
+    (is_kept ? kept : dropped) += 1;
+    if (!is_kept) continue;
+    const geometry::Pose2 true_relative =
+        geometry::Between(truth.at(std::lround(t0 * 1000.0)), truth.at(std::lround(t1 * 1000.0)));
+    errors_m.push_back(std::hypot(x - true_relative.x_m, y - true_relative.y_m));
+  }
+  EXPECT_EQ(kept, printed_kept);
+  EXPECT_EQ(dropped, printed_dropped);
+  ASSERT_GT(kept, 10);
+  std::nth_element(errors_m.begin(), errors_m.begin() + errors_m.size() / 2, errors_m.end());
+  EXPECT_LT(errors_m[errors_m.size() / 2], 0.1);
 }
 
 TEST(CliMap, RadishCorrectedLogMapsOnItsLoggedPoses) {

@@ -77,6 +77,8 @@ double Distance(const Pose2& a, const Pose2& b) { return std::hypot(a.x_m - b.x_
 // The corridor loop walked 1.3 times with a heading drift of 0.34 deg per metre (11 deg per lap).
 struct DriftedLoop {
   SlamCounts counts;
+  std::vector<LoopClosureRecord> closures;
+  std::vector<Pose2> truth;  // scan i at stamp 0.1 i s
   double odometry_error_m = 0.0;  // at the end
   double final_m = 0.0;           // corrected, at the end
   double worst_m = 0.0;           // corrected, anywhere
@@ -105,6 +107,8 @@ DriftedLoop RunDriftedLoop(const SlamOptions& options) {
   }
   run.final_m = Distance(corrected.back().pose, truth.back());
   run.counts = slam.counts();
+  run.closures = slam.closures();
+  run.truth = truth;
   return run;
 }
 
@@ -114,6 +118,28 @@ TEST(KeyframeSlam, ClosesTheLoopAndRemovesTheHeadingDrift) {
   EXPECT_GE(run.counts.loop_closures, 1);
   EXPECT_LT(run.final_m, 0.15);
   EXPECT_LT(run.worst_m, 0.5);
+}
+
+// closures() lists each match that reached the graph: the kept ones measure their keyframes'
+// true relative pose, which the drifted odometry (the graph's prior) had wrong.
+TEST(KeyframeSlam, ClosureRecordsMeasureTheTrueRelativePose) {
+  const DriftedLoop run = RunDriftedLoop({});
+  ASSERT_EQ(static_cast<long>(run.closures.size()), run.counts.loop_matched);
+  long kept = 0;
+  double worst_prior_m = 0.0;
+  for (const LoopClosureRecord& c : run.closures) {
+    ASSERT_LT(c.older_stamp_s, c.stamp_s);
+    const auto index = [](double stamp_s) { return static_cast<std::size_t>(std::lround(stamp_s / 0.1)); };
+    ASSERT_LT(index(c.stamp_s), run.truth.size());
+    const Pose2 truth = geometry::Between(run.truth[index(c.older_stamp_s)], run.truth[index(c.stamp_s)]);
+    EXPECT_GT(c.window_half_m, 0.0);
+    if (!c.kept) continue;
+    ++kept;
+    EXPECT_LT(Distance(c.older_from_new, truth), 0.1) << "closure at " << c.stamp_s << " s";
+    worst_prior_m = std::max(worst_prior_m, Distance(c.older_from_new_prior, truth));
+  }
+  EXPECT_EQ(kept, run.counts.loop_closures);
+  EXPECT_GT(worst_prior_m, 0.3);  // the first closure corrected the drift
 }
 
 // Why reject_window_edge is off by default: at the revisit the drifted heading puts the match on

@@ -1,8 +1,10 @@
 // pena map: the SLAM pass. Without a trajectory and without logged poses, the log is read once
 // through the laser odometry chain (as `pena odometry` runs it, from the same start pose) and a
 // keyframe SLAM (libpena slam, docs/slam.md) that closes loops; the map is then drawn from the
-// SLAM's poses in a second pass. DIR/trajectory.tum holds those poses.
+// SLAM's poses in a second pass. DIR/trajectory.tum holds those poses, DIR/closures.csv the
+// loop-closure matches that reached the graph.
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -51,6 +53,7 @@ SettingTargets SlamTargets(slam::SlamOptions& o) {
   return targets;
 }
 
+
 }  // namespace
 
 odometry::LaserOdometryOptions OdometryOptionsOf(const MapArgs& args) {
@@ -82,6 +85,24 @@ slam::SlamOptions SlamOptionsOf(const MapArgs& args, sensors::EntityKind kind) {
   slam::ValidateSlamOptions(options);
   return options;
 }
+
+namespace {
+
+// One row per closure match that reached the graph (docs/slam.md, "Closures").
+void WriteClosures(const std::filesystem::path& path, const std::vector<slam::LoopClosureRecord>& closures) {
+  std::ofstream out(path);
+  out << "older_stamp,stamp,x,y,theta,prior_x,prior_y,prior_theta,score,window_m,kept\n";
+  for (const slam::LoopClosureRecord& c : closures) {
+    out << Fixed(c.older_stamp_s, 6) << ',' << Fixed(c.stamp_s, 6) << ',' << Fixed(c.older_from_new.x_m, 4) << ','
+        << Fixed(c.older_from_new.y_m, 4) << ',' << Fixed(c.older_from_new.theta_rad, 5) << ','
+        << Fixed(c.older_from_new_prior.x_m, 4) << ',' << Fixed(c.older_from_new_prior.y_m, 4) << ','
+        << Fixed(c.older_from_new_prior.theta_rad, 5) << ',' << Fixed(c.score, 3) << ','
+        << Fixed(c.window_half_m, 3) << ',' << (c.kept ? 1 : 0) << '\n';
+  }
+  if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+}  // namespace
 
 std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run) {
   const auto started = Clock::now();
@@ -120,6 +141,7 @@ std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run
   geometry::Trajectory trajectory = slam.Trajectory();
   std::filesystem::create_directories(args.out);
   io::WriteTum(std::filesystem::path(args.out) / "trajectory.tum", trajectory);
+  WriteClosures(std::filesystem::path(args.out) / "closures.csv", slam.closures());
   run.slam = slam.counts();
   run.slam_wall_s = SecondsSince(started);
   return trajectory;

@@ -40,6 +40,7 @@ struct KeyframeSlam::Impl {
   internal::SubmapMatcher submaps;
   internal::SubmapMatcher local_submaps;
   SlamCounts counts;
+  std::vector<LoopClosureRecord> closures;
   double path_m = 0.0;
   double last_closure_path_m = 0.0;
   long graph_version = 0;
@@ -130,7 +131,13 @@ struct KeyframeSlam::Impl {
                                      Prior(candidate, index), half_m, half_rad);
     if (!match) return false;
     ++counts.loop_matched;
-    if (!AddMatchEdge(candidate, index, *match)) {
+    LoopClosureRecord record{keyframes[static_cast<std::size_t>(candidate)].stamp_s,
+                             keyframes[static_cast<std::size_t>(index)].stamp_s,
+                             match->centre_from_scan, Prior(candidate, index), match->score, half_m,
+                             false};
+    record.kept = AddMatchEdge(candidate, index, *match);
+    closures.push_back(record);
+    if (!record.kept) {
       ++counts.loop_rejected;
       return false;
     }
@@ -215,5 +222,6 @@ geometry::Trajectory KeyframeSlam::Trajectory() const {
 
 const PoseGraph& KeyframeSlam::graph() const { return impl_->graph; }
 const SlamCounts& KeyframeSlam::counts() const { return impl_->counts; }
+const std::vector<LoopClosureRecord>& KeyframeSlam::closures() const { return impl_->closures; }
 
 }  // namespace pena::slam

@@ -29,6 +29,18 @@ struct SlamCounts {
   long optimisations = 0;
 };
 
+// A loop-closure match that scored and was well conditioned (docs/slam.md, "Closures"): what
+// it measured, what the graph predicted, and whether the optimisation kept it.
+struct LoopClosureRecord {
+  double older_stamp_s = 0.0;               // the older keyframe the submap was centred on
+  double stamp_s = 0.0;                     // the new keyframe
+  geometry::Pose2 older_from_new;           // measured by the match
+  geometry::Pose2 older_from_new_prior;     // predicted by the graph before the match
+  double score = 0.0;                       // eq. 2 at the best grid pose
+  double window_half_m = 0.0;               // search half-width (grows since the last closure)
+  bool kept = false;                        // false: dropped by the chi2 test (max_loop_chi2)
+};
+
 // One entity's SLAM. Not thread-safe.
 class KeyframeSlam {
  public:
@@ -51,6 +63,8 @@ class KeyframeSlam {
   // The graph (nodes: keyframes in order).
   const PoseGraph& graph() const;
   const SlamCounts& counts() const;
+  // Every closure match that reached the graph, kept or dropped, in the order they were tried.
+  const std::vector<LoopClosureRecord>& closures() const;
 
  private:
   struct Impl;
