@@ -13,13 +13,7 @@ import csv
 import math
 import sys
 
-from tum_poses import read_tum
-
-
-def between(a, b):
-    dx, dy = b[0] - a[0], b[1] - a[1]
-    c, s = math.cos(a[2]), math.sin(a[2])
-    return (c * dx + s * dy, -s * dx + c * dy, math.remainder(b[2] - a[2], 2 * math.pi))
+from tum_poses import between, read_tum
 
 
 def main():

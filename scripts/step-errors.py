@@ -11,12 +11,11 @@ Poses are matched to the truth by stamp within 1 ms.
 """
 import math, sys
 
-from tum_poses import read_tum
+from tum_poses import between, read_tum
+
 
 def relative(a, b):
-    dx, dy = b[0] - a[0], b[1] - a[1]
-    c, s = math.cos(a[2]), math.sin(a[2])
-    return (c * dx + s * dy, -s * dx + c * dy)
+    return between(a, b)[:2]
 
 def main():
     args = sys.argv[1:]
