@@ -323,5 +323,21 @@ TEST(LaserOdometry, DropsWalkerFixedReturnsForPeopleOnly) {
   EXPECT_THROW(LaserOdometry(bad, sensors::EntityKind::kHuman, {}, 0.0), std::invalid_argument);
 }
 
+// The same for returns inside space an earlier scan saw through: people only, off by default.
+TEST(LaserOdometry, DropsSeenThroughReturnsForPeopleOnly) {
+  LaserOdometryOptions on;
+  on.drop_seen_through_points = true;
+  const Replayed robot = Replay(Entity("robot1"), on);
+  const Replayed robot_off = Replay(Entity("robot1"));
+  EXPECT_EQ(robot.counts.seen_through_dropped, 0);
+  ASSERT_EQ(robot.estimates.size(), robot_off.estimates.size());
+  for (std::size_t i = 0; i < robot.estimates.size(); ++i) {
+    EXPECT_EQ(robot.estimates[i].world_from_body.x_m, robot_off.estimates[i].world_from_body.x_m);
+    EXPECT_EQ(robot.estimates[i].world_from_body.y_m, robot_off.estimates[i].world_from_body.y_m);
+  }
+  EXPECT_GT(Replay(Entity("ff1"), on).counts.seen_through_dropped, 0);
+  EXPECT_EQ(Replay(Entity("ff1")).counts.seen_through_dropped, 0);
+}
+
 }  // namespace
 }  // namespace pena::odometry

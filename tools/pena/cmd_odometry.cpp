@@ -218,6 +218,7 @@ void WriteSummaryJson(const std::filesystem::path& path, const OdometryArgs& arg
       << ", \"turn_held\": " << c.turn_held;
   // Only when drop_walker_fixed_points dropped any: the defaults' summary stays as it was.
   if (c.walker_fixed_dropped > 0) out << ", \"walker_fixed_dropped\": " << c.walker_fixed_dropped;
+  if (c.seen_through_dropped > 0) out << ", \"seen_through_dropped\": " << c.seen_through_dropped;
   if (c.pace_held > 0) out << ", \"pace_held\": " << c.pace_held;
   out << ", \"no_points\": " << c.no_points << ", \"prior_only\": " << run.prior_only
       << ", \"keyframes\": " << c.keyframes << ", \"wide_searches\": " << c.wide_searches

@@ -84,6 +84,11 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   poor_timing = timing.Add(scan.stamp_s);
   scan_matching::Points2 points = UsablePoints(scan, options);
   if (drop_walker_fixed) points = DropWalkerFixed(std::move(points));
+  if (drop_seen_through) {
+    const std::vector<bool> marked = seen_through.Find(points, out.world_from_prior);
+    counts.seen_through_dropped += std::count(marked.begin(), marked.end(), true);
+    points = internal::WithoutMarked(points, marked);
+  }
   out.points = static_cast<int>(points.size());
   out.stale = stale_scans.IsStale(scan);
   counts.stale += out.stale ? 1 : 0;
@@ -113,6 +118,7 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
     frozen_odometry.Estimated(estimate);
     return out;
   }
+  if (drop_seen_through) seen_through.Remember(scan, estimate);
   velocity = geometry::Between(previous_estimate, estimate);
   previous_estimate = estimate;
   frozen_odometry.Estimated(estimate);

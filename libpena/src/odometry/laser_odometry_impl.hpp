@@ -19,6 +19,7 @@
 #include "search_window.hpp"
 #include "stale_scan.hpp"
 #include "walker_fixed_points.hpp"
+#include "seen_through_points.hpp"
 
 namespace pena::odometry {
 namespace internal {
@@ -57,6 +58,7 @@ struct LaserOdometry::Impl {
             mode == MotionPrior::kOdometry ? checked.frozen_odometry_min_move_m : 0.0),
         walker_fixed(checked.walker_fixed_points),  // checked even when off
         drop_walker_fixed(checked.drop_walker_fixed_points && mode == MotionPrior::kDeadReckoning),
+        drop_seen_through(checked.drop_seen_through_points && mode == MotionPrior::kDeadReckoning),
         pace_check({mode == MotionPrior::kDeadReckoning &&
                             checked.dead_reckoning.stride_interpolation.enabled
                         ? checked.pace_check_tolerance
@@ -128,6 +130,8 @@ struct LaserOdometry::Impl {
   // (laser frame, beam order) and the dead reckoning's motion since it, stride jumps taken out.
   internal::WalkerFixedPoints walker_fixed;
   bool drop_walker_fixed;
+  bool drop_seen_through;
+  internal::SeenThroughPoints seen_through;
   scan_matching::Points2 previous_points;
   geometry::Pose2 smooth_increment;
   // People with spread strides (pace_check_*): the raw stream moves in whole strides, a pace
