@@ -156,6 +156,33 @@ TEST_F(MapLocaliserTest, AnOdometryKeyframeOnItsPriorIsSearchedAlongTheCorridor)
   EXPECT_NEAR(plain.Update(scan, estimate)->map_from_body_after.x_m - truth.x_m, 0.5, 0.05);
 }
 
+// A keyframe the odometry matched 0.8 m ahead along the corridor (its own match slid): from there
+// the plan fits too badly for a round to pass, and the places along the corridor are searched as
+// for a keyframe on the prior. Outside the plan (the west wing) the same search finds nothing.
+TEST_F(MapLocaliserTest, AFailedRoundInTheCorridorIsSearchedAlongIt) {
+  const geometry::Pose2 truth{17.0, 14.0, 0.0};
+  auto [scan, estimate] = At(truth, {0.8, 0.0, 0.0});
+  estimate.status = odometry::MatchStatus::kMatched;
+  MapLocaliser localiser({}, *office_.apriori, {});
+  const auto round = localiser.Update(scan, estimate);
+  ASSERT_TRUE(round.has_value());
+  EXPECT_TRUE(round->accepted);
+  EXPECT_FALSE(round->degenerate);
+  EXPECT_TRUE(round->recast);
+  EXPECT_LT(round->first_score, MapLocaliserOptions{}.min_score);
+  ExpectNear(round->map_from_body_after, truth, 0.05, 0.5 * kDeg);
+  MapLocaliserOptions off;
+  off.along_search_failed = false;
+  MapLocaliser plain(off, *office_.apriori, {});
+  const auto failed = plain.Update(scan, estimate);
+  ASSERT_TRUE(failed.has_value());
+  EXPECT_FALSE(failed->accepted);
+  EXPECT_TRUE(failed->degenerate);
+  const auto [outside_scan, outside_estimate] = At({2.0, 11.0, -90.0 * kDeg});
+  MapLocaliser west_wing({}, *office_.apriori, {});
+  EXPECT_FALSE(west_wing.Update(outside_scan, outside_estimate)->accepted);
+}
+
 // Walking east along the office corridor at 1 m/s, one scan a second; the odometry is right except
 // at `jump_at` (x), where its single scan lies 0.4 m ahead along the corridor (a scan matched near
 // its reference keyframe). Returns the error along the corridor of the pose on the plan at every

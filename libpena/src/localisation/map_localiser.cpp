@@ -88,9 +88,11 @@ MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
   if (found && found->interior && NeedsRecast(found->correction)) {
     // A large correction is judged on the plan as seen from where it puts the entity.
     round = Recast(scan, real, round, found->correction);
-  } else if (found && round.accepted && round.degenerate && on_prior && options.along_search_m > 0.0) {
+  } else if (found && round.degenerate && options.along_search_m > 0.0 &&
+             ((round.accepted && on_prior) || (!round.accepted && options.along_search_failed))) {
     // The odometry's own position along the weak direction came from its motion prior, which
-    // may have slid (office seed 1 at 166.5 s: 0.47 m along the corridor in one keyframe).
+    // may have slid (office seed 1 at 166.5 s: 0.47 m along the corridor in one keyframe), or
+    // the plan does not fit where the odometry put the entity (along_search_failed).
     if (auto along = AlongSearch(scan, real, round, *found)) round = *along;
   }
   if (status == MapStatus::kOutsideMap && round.accepted && WeakReacquisition(round)) {

@@ -59,6 +59,12 @@ struct MapLocaliserOptions {
   // odometry.prior_gate_agree_gyro_m = 0.1: 0.47 m in one keyframe at 166.5 s). 0: off.
   double along_search_m = 1.0;
   double along_search_step_m = 0.25;
+  // The same search for a degenerate round that failed (scored below min_score): the odometry's
+  // own match may have slid along the corridor, and the plan then looks wrong from the expected
+  // place in every direction but the weak one (office seed 3 with the odometry's
+  // drop_seen_through_points: 0.45 m ahead at 165 s, seven failed rounds in the corridor, then a
+  // re-acquisition 0.69 m off kept to the end). false: only for keyframes on the motion prior.
+  bool along_search_failed = true;
   // A re-acquisition (the first accepted round after being outside the plan, in the grown
   // window) needs a place the scan pins down in every direction: a round that is degenerate,
   // or along whose weak direction eq. 2 falls by less than along_min_drop, is refused and the
