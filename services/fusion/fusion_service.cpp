@@ -80,11 +80,7 @@ FusionService::FusionService(FusionServiceOptions options)
                recovery.torn_tail.empty() ? "" : "; " + recovery.torn_tail);
   if (!options_.output_dir.empty()) {
     std::filesystem::create_directories(options_.output_dir);
-    versions_log_.open(options_.output_dir / "global_versions.csv", std::ios::app);
-    if (!versions_log_) {
-      throw std::runtime_error("cannot write " +
-                               (options_.output_dir / "global_versions.csv").string());
-    }
+    versions_log_.emplace(options_.output_dir / "global_versions.csv");
   }
 }
 
@@ -112,6 +108,14 @@ double FusionService::NowS() const { return static_cast<double>(NowNs()) * 1e-9;
 
 void FusionService::Startup() {
   start_ns_ = NowNs();
+  const std::uint64_t recovered = store_->state().global_version();
+  if (versions_log_) {
+    if (const auto first_missed = versions_log_->CatchUp(recovered, NowNs())) {
+      spdlog::info("global map versions {}-{} were journaled but not published before the "
+                   "restart; the startup snapshot publishes them",
+                   *first_missed, recovered);
+    }
+  }
   // The plan is loaded once: after a restart the journal already holds it.
   if (!options_.plan.empty() && store_->state().Checkpoint().plan.empty()) {
     std::vector<line_map::LineSegment> plan = ReadPlanSegments(options_.plan);
@@ -205,10 +209,7 @@ fusion::FusionOutput FusionService::Apply(const fusion::FusionInput& input) {
 
 void FusionService::PublishDelta(const line_map::MapDelta& delta) {
   snapshot_dirty_ = true;
-  if (versions_log_) {
-    versions_log_ << delta.from_version << ',' << delta.to_version << ',' << NowNs() << '\n';
-    versions_log_.flush();
-  }
+  if (versions_log_) versions_log_->Append(delta.from_version, delta.to_version, NowNs());
   try {
     pena_dds::GlobalMapDelta sample = ToDdsGlobalMapDelta(delta, kGlobalMapId, NowS());
     if (!delta_writer_.Write(sample)) spdlog::warn("DDS refused global map delta {}", delta.to_version);

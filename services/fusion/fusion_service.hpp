@@ -9,7 +9,6 @@
 // matches them against a copy of the global map the fusion worker hands it after every change.
 
 #include <cstdint>
-#include <fstream>
 #include <map>
 #include <mutex>
 #include <memory>
@@ -24,6 +23,7 @@
 #include "fusion_options.hpp"
 #include "fusion_stats.hpp"
 #include "lockstep_order.hpp"
+#include "versions_log.hpp"
 #include "pena/fusion/correction_filter.hpp"
 #include "pena/fusion/fusion_store.hpp"
 #include "pena/pipeline/entity_pipeline.hpp"
@@ -139,7 +139,7 @@ class FusionService {
   std::unique_ptr<fusion::FusionStore> store_;
   FusionStats stats_;
   FusionRunSummary summary_;
-  std::ofstream versions_log_;
+  std::optional<VersionsLog> versions_log_;  // OUT/global_versions.csv
   std::map<std::string, std::string> entity_of_participant_;  // GUID prefix bytes -> entity id
   std::map<std::string, std::int64_t> last_sync_request_ns_;
   std::mutex send_mutex_;  // correction_seq_, the correction writer, summary_.corrections_sent
