@@ -70,7 +70,8 @@ void MapLocaliser::Impl::Conclude(const geometry::Pose2& odom_from_body, MapCorr
   round.status = status;
 }
 
-bool MapLocaliser::Impl::WeakReacquisition(const MapCorrection& round) const {
+bool MapLocaliser::Impl::WeakReacquisition(const MapCorrection& round, bool on_edge) const {
+  if (options.reacquire_interior && on_edge) return true;
   return options.reacquire_pinned && (round.degenerate || round.along_drop < options.along_min_drop);
 }
 
@@ -95,7 +96,8 @@ MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
     // the plan does not fit where the odometry put the entity (along_search_failed).
     if (auto along = AlongSearch(scan, real, round, *found)) round = *along;
   }
-  if (status == MapStatus::kOutsideMap && round.accepted && WeakReacquisition(round)) {
+  const bool on_edge = found && !found->interior && !round.recast;
+  if (status == MapStatus::kOutsideMap && round.accepted && WeakReacquisition(round, on_edge)) {
     round.accepted = false;
     round.correction = {};
   }

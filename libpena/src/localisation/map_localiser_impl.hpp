@@ -93,8 +93,9 @@ struct MapLocaliser::Impl {
   void Conclude(const geometry::Pose2& odom_from_body, MapCorrection& round);
   // An accepted round's returns (body frame) measure the plan's walls (plan_adaptation).
   void Learn(const scan_matching::Points2& real, const MapCorrection& round, double walked_m);
-  // A re-acquisition on a round its scan does not pin down in every direction (reacquire_pinned).
-  bool WeakReacquisition(const MapCorrection& round) const;
+  // A re-acquisition on a round its scan does not pin down in every direction (reacquire_pinned)
+  // or whose search found its best grid pose on the window's edge (`on_edge`, reacquire_interior).
+  bool WeakReacquisition(const MapCorrection& round, bool on_edge) const;
 };
 
 }  // namespace pena::localisation
