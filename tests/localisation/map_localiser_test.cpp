@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "office_plan.hpp"
 
@@ -181,6 +183,42 @@ TEST_F(MapLocaliserTest, AFailedRoundInTheCorridorIsSearchedAlongIt) {
   const auto [outside_scan, outside_estimate] = At({2.0, 11.0, -90.0 * kDeg});
   MapLocaliser west_wing({}, *office_.apriori, {});
   EXPECT_FALSE(west_wing.Update(outside_scan, outside_estimate)->accepted);
+}
+
+// A corridor with door posts every metre and a keyframe the odometry placed 0.5 m along it on its
+// prior: the places 1 m apart along it fit the plan equally well, so the search along the
+// corridor takes neither (along_search_unique) and the odometry is kept; without the rule the
+// best of the equal scores is taken.
+MapCorrection RoundBetweenLookAlikePosts(const MapLocaliserOptions& options) {
+  std::vector<geometry::Segment2> plan{{{0.0, 0.0}, {40.0, 0.0}}, {{0.0, 2.0}, {40.0, 2.0}}};
+  for (int k = 0; k <= 20; ++k) {
+    const double x = 10.0 + k;
+    plan.push_back({{x, 0.0}, {x, 0.15}});
+    plan.push_back({{x, 2.0}, {x, 1.85}});
+  }
+  const geometry::Pose2 truth{20.3, 1.0, 0.0};
+  odometry::OdometryEstimate estimate;
+  estimate.stamp_s = 1.0;
+  estimate.world_from_body = geometry::Compose(truth, {0.5, 0.0, 0.0});
+  estimate.reference_changed = true;
+  estimate.status = odometry::MatchStatus::kDegenerate;
+  MapLocaliser localiser(options, plan, {});
+  return *localiser.Update(VirtualScanner(plan).Scan(truth, testing::OfficeLaser(), 361, 1.0), estimate);
+}
+
+TEST(MapLocaliserAlongSearch, TakesNoPlaceAmongLookAlikes) {
+  const MapCorrection kept = RoundBetweenLookAlikePosts({});
+  EXPECT_TRUE(kept.accepted);
+  EXPECT_TRUE(kept.degenerate);
+  EXPECT_FALSE(kept.recast);
+  EXPECT_NEAR(kept.map_from_body_after.x_m, 20.8, 0.05);  // the odometry along the corridor
+  MapLocaliserOptions off;
+  off.along_search_unique = false;
+  const MapCorrection taken = RoundBetweenLookAlikePosts(off);
+  EXPECT_TRUE(taken.accepted);
+  EXPECT_TRUE(taken.recast);
+  EXPECT_FALSE(taken.degenerate);
+  EXPECT_GT(std::abs(taken.map_from_body_after.x_m - 20.8), 0.4);  // moved to one of the two
 }
 
 // Walking east along the office corridor at 1 m/s, one scan a second; the odometry is right except

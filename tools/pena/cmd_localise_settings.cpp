@@ -71,6 +71,7 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                    {"reacquire_pinned", &o.reacquire_pinned},
                    {"reacquire_interior", &o.reacquire_interior},
                    {"along_search_failed", &o.along_search_failed},
+                   {"along_search_unique", &o.along_search_unique},
                    {"plan_adaptation.enabled", &o.plan_adaptation.enabled},
                    {"plan_adaptation.openings.enabled", &o.plan_adaptation.openings.enabled}};
   for (const std::string& text : settings) {

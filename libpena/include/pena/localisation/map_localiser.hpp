@@ -65,6 +65,10 @@ struct MapLocaliserOptions {
   // drop_seen_through_points: 0.45 m ahead at 165 s, seven failed rounds in the corridor, then a
   // re-acquisition 0.69 m off kept to the end). false: only for keyframes on the motion prior.
   bool along_search_failed = true;
+  // The place the search along the weak direction takes must also score along_min_drop above
+  // every other place searched at least two steps from it: a peak, not the best of flat scores.
+  // false: only above the expected place, as before session 23.
+  bool along_search_unique = true;
   // A re-acquisition (the first accepted round after being outside the plan, in the grown
   // window) needs a place the scan pins down in every direction: a round that is degenerate,
   // or along whose weak direction eq. 2 falls by less than along_min_drop, is refused and the
