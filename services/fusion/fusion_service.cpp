@@ -108,8 +108,8 @@ double FusionService::NowS() const { return static_cast<double>(NowNs()) * 1e-9;
 
 void FusionService::Startup() {
   start_ns_ = NowNs();
-  const std::uint64_t recovered = store_->state().global_version();
   if (versions_log_) {
+    const std::uint64_t recovered = store_->state().global_version();
     if (const auto first_missed = versions_log_->CatchUp(recovered, NowNs())) {
       spdlog::info("global map versions {}-{} were journaled but not published before the "
                    "restart; the startup snapshot publishes them",
