@@ -159,7 +159,7 @@ TEST(LocalisationChain, AWalkIntoTheAnnexIsNotDecidedOnTheNorthEastRoom) {
 // passage at x 22 (96-103 s; single scans jump with the odometry, hence not the largest). At 95.75 s, after 25 s in the annex on an odometry within 0.06 m of
 // the truth, a round's best grid pose lay on the edge of the grown window (3.2 m) and its
 // refinement finished 1.66 m up the passage on a look-alike (score 0.94, pinned).
-double ErrorReenteringUpTheSouthPassageM(bool reacquire_interior) {
+double ErrorReenteringUpTheSouthPassageM(bool require_interior) {
   static const sim::SimulationResult mission = [] {
     sim::SimulationOptions options;
     options.seed = 2;
@@ -173,7 +173,7 @@ double ErrorReenteringUpTheSouthPassageM(bool reacquire_interior) {
   });
   const geometry::Pose2 start = std::get<sensors::GroundTruth>(*first).world_from_body;
   LocalisationChainOptions options;
-  options.map.reacquire_interior = reacquire_interior;
+  options.map.require_interior = require_interior;
   LocalisationChain chain(options, entity.kind, *office.apriori, start, sensors::StampOf(entity.records.front()));
   const std::vector<sensors::SensorRecord> records =
       dead_reckoning::SpreadStrides(entity.records, dead_reckoning::SpreadOptionsOf(options.odometry.dead_reckoning));

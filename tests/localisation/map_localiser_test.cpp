@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 #include "office_plan.hpp"
@@ -57,6 +58,31 @@ TEST_F(MapLocaliserTest, CorrectsAnOffsetPoseInAMappedRoom) {
   EXPECT_GT(round->confidence, 0.5);
   ExpectNear(localiser.MapFromBody(estimate.world_from_body), truth, 0.03, 0.5 * kDeg);
   ExpectNear(round->map_from_body_after, truth, 0.03, 0.5 * kDeg);
+}
+
+// In a mapped room with the odometry 0.24 m off, beyond the paper's window (+-0.2 m): the search's
+// best grid position lies on the window's edge, so the round is not taken (require_interior) and
+// the next one, in a window grown by window_growth, finds the place inside it.
+TEST_F(MapLocaliserTest, AnOptimumOnTheWindowsEdgeWaitsForAWiderWindow) {
+  const geometry::Pose2 truth{7.0, 18.5, -90.0 * kDeg};
+  MapLocaliser localiser({}, *office_.apriori, {});
+  auto [scan, estimate] = At(truth, {0.24, 0.0, 0.0});
+  const auto edge = localiser.Update(scan, estimate);
+  ASSERT_TRUE(edge.has_value());
+  EXPECT_FALSE(edge->accepted);
+  EXPECT_FALSE(edge->recast);
+  std::tie(scan, estimate) = At(truth, {0.24, 0.0, 0.0});
+  const auto wider = localiser.Update(scan, estimate);
+  ASSERT_TRUE(wider.has_value());
+  EXPECT_GT(wider->window_xy_m, edge->window_xy_m);
+  EXPECT_TRUE(wider->accepted);
+  ExpectNear(wider->map_from_body_after, truth, 0.05, 0.5 * kDeg);
+  MapLocaliserOptions off;
+  off.require_interior = false;
+  MapLocaliser taken(off, *office_.apriori, {});
+  const auto first = taken.Update(scan, estimate);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_TRUE(first->accepted);
 }
 
 TEST_F(MapLocaliserTest, RunsOnlyWhenTheReferenceChanges) {

@@ -69,7 +69,7 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                   {"plan_adaptation.openings.min_rounds", &o.plan_adaptation.openings.min_rounds}};
   targets.flags = {{"global.answer_on_plan", &chain.tracker.answer_on_plan},
                    {"reacquire_pinned", &o.reacquire_pinned},
-                   {"reacquire_interior", &o.reacquire_interior},
+                   {"require_interior", &o.require_interior},
                    {"along_search_failed", &o.along_search_failed},
                    {"along_search_unique", &o.along_search_unique},
                    {"plan_adaptation.enabled", &o.plan_adaptation.enabled},

@@ -70,8 +70,7 @@ void MapLocaliser::Impl::Conclude(const geometry::Pose2& odom_from_body, MapCorr
   round.status = status;
 }
 
-bool MapLocaliser::Impl::WeakReacquisition(const MapCorrection& round, bool on_edge) const {
-  if (options.reacquire_interior && on_edge) return true;
+bool MapLocaliser::Impl::WeakReacquisition(const MapCorrection& round) const {
   return options.reacquire_pinned && (round.degenerate || round.along_drop < options.along_min_drop);
 }
 
@@ -96,8 +95,11 @@ MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
     // the plan does not fit where the odometry put the entity (along_search_failed).
     if (auto along = AlongSearch(scan, real, round, *found)) round = *along;
   }
-  const bool on_edge = found && !found->interior && !round.recast;
-  if (status == MapStatus::kOutsideMap && round.accepted && WeakReacquisition(round, on_edge)) {
+  if (round.accepted && options.require_interior && found && !found->interior_xy && !round.recast) {
+    round.accepted = false;  // an edge optimum: the place may lie beyond the window
+    round.correction = {};
+  }
+  if (status == MapStatus::kOutsideMap && round.accepted && WeakReacquisition(round)) {
     round.accepted = false;
     round.correction = {};
   }

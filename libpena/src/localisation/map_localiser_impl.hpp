@@ -24,6 +24,7 @@ struct Found {
   geometry::Pose2 correction;
   Eigen::Vector2d weak = Eigen::Vector2d::UnitX();
   bool interior = false;
+  bool interior_xy = false;  // the same in x and y only (require_interior)
 };
 
 }  // namespace internal
@@ -93,9 +94,8 @@ struct MapLocaliser::Impl {
   void Conclude(const geometry::Pose2& odom_from_body, MapCorrection& round);
   // An accepted round's returns (body frame) measure the plan's walls (plan_adaptation).
   void Learn(const scan_matching::Points2& real, const MapCorrection& round, double walked_m);
-  // A re-acquisition on a round its scan does not pin down in every direction (reacquire_pinned)
-  // or whose search found its best grid pose on the window's edge (`on_edge`, reacquire_interior).
-  bool WeakReacquisition(const MapCorrection& round, bool on_edge) const;
+  // A re-acquisition on a round its scan does not pin down in every direction (reacquire_pinned).
+  bool WeakReacquisition(const MapCorrection& round) const;
 };
 
 }  // namespace pena::localisation

@@ -33,12 +33,17 @@ double AlongDrop(const scan_matching::CorrelationScanMatcher& matcher, const sca
   return peak - side;
 }
 
-// Whether the search's best grid pose lies inside the window `w`, not on its edge.
-bool Interior(const scan_matching::MatchResult& match, const scan_matching::SearchWindow& w) {
+// Whether the search's best grid position lies inside the window `w`, not on its edge (x, y).
+bool InteriorXy(const scan_matching::MatchResult& match, const scan_matching::SearchWindow& w) {
   const geometry::Pose2& g = match.grid_pose;
   return match.converged && std::abs(g.x_m) < 0.5 * (w.size_x_m - w.step_xy_m) &&
-         std::abs(g.y_m) < 0.5 * (w.size_y_m - w.step_xy_m) &&
-         std::abs(g.theta_rad) < 0.5 * (w.size_theta_rad - w.step_theta_rad);
+         std::abs(g.y_m) < 0.5 * (w.size_y_m - w.step_xy_m);
+}
+
+// The same in heading too.
+bool Interior(const scan_matching::MatchResult& match, const scan_matching::SearchWindow& w) {
+  return InteriorXy(match, w) &&
+         std::abs(match.grid_pose.theta_rad) < 0.5 * (w.size_theta_rad - w.step_theta_rad);
 }
 
 // Whether `best_score` at `best_along_m` beats by `margin` every place of `scores` (along_m,
@@ -93,7 +98,7 @@ Found MapLocaliser::Impl::Judge(const scan_matching::MatchResult& match,
       match.converged && in_window && match.hits >= options.min_hits && match.score >= min_score;
   round.confidence = match.score * std::min(1.0, match.hits / (2.0 * options.min_hits));
   round.correction = round.accepted ? correction : geometry::Pose2{};
-  return {correction, weak, in_window && Interior(match, searched)};
+  return {correction, weak, in_window && Interior(match, searched), in_window && InteriorXy(match, searched)};
 }
 
 std::optional<Found> MapLocaliser::Impl::Search(const sensors::LaserScan& scan, const scan_matching::Points2& real,

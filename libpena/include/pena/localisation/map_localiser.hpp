@@ -76,14 +76,16 @@ struct MapLocaliserOptions {
   // often as not (office seeds 1 and 3 re-entering from the west wing once its end wall was cut
   // open, plan_openings.hpp: 1.4-1.6 m along, score 0.86). false: off.
   bool reacquire_pinned = true;
-  // A re-acquisition needs the search's best grid pose inside the grown window, not on its edge
-  // (rounds judged again from where they put the entity excepted: recast, along search). An
-  // optimum on the edge is no peak of the searched place; the least-squares refinement then
-  // finishes on whatever lies beyond: office seed 2, walking back into the plan up the south
-  // passage after 25 s outside on an odometry within 0.06 m, was re-acquired 1.66 m along it
-  // (score 0.94, pinned, window 3.2 m) and carried 0.8-1 m off for 7 s. Refused, the next round
-  // re-acquires it in place. false: off.
-  bool reacquire_interior = true;
+  // A round is accepted only if its search's best grid position lies inside the window, not on
+  // its edge in x or y (rounds judged again from where they put the entity excepted: recast,
+  // along search; the heading's edge is left to the refinement, which corrects a pose 2-3 deg
+  // beyond the paper's +-2 deg in one round). An optimum on the edge is no peak of the searched
+  // place and the least-squares refinement then finishes on whatever lies beyond: office seed 2,
+  // walking back into the plan up the south passage after 25 s outside on an odometry within
+  // 0.06 m, was re-acquired 1.66 m along it (score 0.94, pinned, window 3.2 m) and carried
+  // 0.8-1 m off for 7 s. Such a round counts as failed, so the next one searches a window grown
+  // by window_growth. false: edge optima are taken, as before session 23.
+  bool require_interior = true;
   // Beyond the paper: a round at every scan, not only at reference changes, so a single badly
   // matched odometry scan (a corridor along which the odometry slid) is corrected as well.
   bool every_scan = false;
