@@ -171,7 +171,11 @@ TEST(LaserOdometry, PersonInACorridorHasNoStrideSawTooth) {
   matched.dead_reckoning.stride_interpolation.enabled = false;
   matched.dead_reckoning.max_stride_period_s = 1.5;
   LaserOdometryOptions slide = matched;
-  slide.degenerate_slide_ratio = 0.2;
+  slide.degenerate_slide_ratio = 0.2;  // on the raw stride stream the auto default is off
+  slide.degenerate_slide_backward_only = false;  // the check as it was measured here (session 13)
+  slide.degenerate_max_slide_m = 0.1;
+  slide.degenerate_slide_max_across_m = 0.0;
+  slide.degenerate_slide_prior_agreed_m = 0.0;
   const double matched_m = AlongTrackJitterM(person, Replay(person, matched));
   const double slide_m = AlongTrackJitterM(person, Replay(person, slide));
   EXPECT_LT(slide_m, 0.6 * matched_m) << "slide check " << slide_m << " m, without " << matched_m << " m";
@@ -241,17 +245,40 @@ TEST(LaserOdometry, RefusesAPaceCheckOutOfRangeNamingTheField) {
   refused(options, "pace_check_weak_ratio");
 }
 
+// The direction flag is a mode of the slide check: with the check off (ratio 0) it changes
+// nothing, so turning the check off takes one setting.
 TEST(LaserOdometry, BackwardOnlySlideIsAModeOfTheSlideCheck) {
-  LaserOdometryOptions options;
-  options.degenerate_slide_backward_only = true;  // without degenerate_slide_ratio
-  try {
-    LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
-    FAIL() << "expected std::invalid_argument";
-  } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find("degenerate_slide_backward_only"), std::string::npos);
+  const sim::EntityRecording person = CorridorRun("human", 1.0, 20.0);
+  LaserOdometryOptions off;
+  off.degenerate_slide_ratio = 0.0;
+  LaserOdometryOptions off_both_ways = off;
+  off_both_ways.degenerate_slide_backward_only = false;
+  const Replayed a = Replay(person, off);
+  const Replayed b = Replay(person, off_both_ways);
+  ASSERT_EQ(a.estimates.size(), b.estimates.size());
+  for (std::size_t i = 0; i < a.estimates.size(); ++i) {
+    EXPECT_EQ(a.estimates[i].world_from_body.x_m, b.estimates[i].world_from_body.x_m) << i;
   }
-  options.degenerate_slide_ratio = 0.2;
-  EXPECT_NO_THROW(LaserOdometry(options, sensors::EntityKind::kHuman, {}, 0.0));
+}
+
+TEST(LaserOdometry, RefusesASlideCheckOutOfRangeNamingTheField) {
+  const auto refused = [](LaserOdometryOptions options, const std::string& field) {
+    try {
+      LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
+      ADD_FAILURE() << "accepted " << field;
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
+    }
+  };
+  LaserOdometryOptions options;
+  options.degenerate_slide_ratio = -0.5;  // -1 is auto, other negatives are errors
+  refused(options, "degenerate_slide_ratio");
+  options = {};
+  options.degenerate_slide_max_across_m = -0.1;
+  refused(options, "degenerate_slide_max_across_m");
+  options = {};
+  options.degenerate_slide_prior_agreed_m = -0.1;
+  refused(options, "degenerate_slide_prior_agreed_m");
 }
 
 TEST(LaserOdometry, ScanGoingBackInTimeIsIgnored) {

@@ -28,6 +28,8 @@ std::map<std::string, double*> SettableOptions(odometry::LaserOdometryOptions& o
           {"pace_check_weak_ratio", &o.pace_check_weak_ratio},
           {"degenerate_slide_ratio", &o.degenerate_slide_ratio},
           {"degenerate_max_slide_m", &o.degenerate_max_slide_m},
+          {"degenerate_slide_max_across_m", &o.degenerate_slide_max_across_m},
+          {"degenerate_slide_prior_agreed_m", &o.degenerate_slide_prior_agreed_m},
           {"covariance.motion_m_per_sqrt_m", &o.covariance.motion_m_per_sqrt_m},
           {"covariance.motion_rad_per_sqrt_m", &o.covariance.motion_rad_per_sqrt_m},
           {"covariance.motion_rad_per_sqrt_rad", &o.covariance.motion_rad_per_sqrt_rad},

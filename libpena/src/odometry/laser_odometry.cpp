@@ -16,19 +16,26 @@ bool ResolveConfirm(LaserOdometryOptions::Confirm confirm, sensors::EntityKind k
   return confirm == LaserOdometryOptions::Confirm::kAlways;
 }
 
+MotionPrior Resolve(MotionPrior prior, sensors::EntityKind kind) {
+  if (prior != MotionPrior::kAuto) return prior;
+  return kind == sensors::EntityKind::kHuman ? MotionPrior::kDeadReckoning : MotionPrior::kOdometry;
+}
+
 // The reference chosen by place is the robots' default (session 11: with the frozen-odometry
 // handling better on all three Freiburg logs); people keep recency (mixed, twelfth round b).
+// The slide check is the people's with spread strides (session 24): on the raw stride stream
+// the prior moves in whole strides, and wheel odometry was not measured with it.
 LaserOdometryOptions ForEntity(LaserOdometryOptions options, sensors::EntityKind kind) {
   if (options.local_map_pool_keyframes == LaserOdometryOptions::kAutoPoolKeyframes) {
     options.local_map_pool_keyframes =
         kind == sensors::EntityKind::kRobot ? LaserOdometryOptions::kRobotPoolKeyframes : 0;
   }
+  if (options.degenerate_slide_ratio == LaserOdometryOptions::kAutoSlideRatio) {
+    const bool spread_strides = Resolve(options.motion_prior, kind) == MotionPrior::kDeadReckoning &&
+                                options.dead_reckoning.stride_interpolation.enabled;
+    options.degenerate_slide_ratio = spread_strides ? LaserOdometryOptions::kPeopleSlideRatio : 0.0;
+  }
   return options;
-}
-
-MotionPrior Resolve(MotionPrior prior, sensors::EntityKind kind) {
-  if (prior != MotionPrior::kAuto) return prior;
-  return kind == sensors::EntityKind::kHuman ? MotionPrior::kDeadReckoning : MotionPrior::kOdometry;
 }
 
 scan_matching::Points2 UsablePoints(const sensors::LaserScan& scan, const LaserOdometryOptions& o) {

@@ -19,10 +19,16 @@
 #include "search_window.hpp"
 #include "stale_scan.hpp"
 #include "walker_fixed_points.hpp"
+#include "weak_direction.hpp"
 #include "seen_through_points.hpp"
 
 namespace pena::odometry {
 namespace internal {
+
+inline WeakDirectionOptions WeakDirectionOf(const LaserOdometryOptions& o) {
+  return {o.degenerate_eigen_ratio,          o.degenerate_slide_ratio,        o.degenerate_max_slide_m,
+          o.degenerate_slide_backward_only, o.degenerate_slide_max_across_m, o.degenerate_slide_prior_agreed_m};
+}
 
 inline PlaceChoice PlaceChoiceOf(const LaserOdometryOptions& o) {
   return {o.local_map_pool_keyframes, o.local_map_pool_age_s, o.local_map_recent_keyframes,
@@ -59,6 +65,7 @@ struct LaserOdometry::Impl {
         walker_fixed(checked.walker_fixed_points),  // checked even when off
         drop_walker_fixed(checked.drop_walker_fixed_points && mode == MotionPrior::kDeadReckoning),
         drop_seen_through(checked.drop_seen_through_points && mode == MotionPrior::kDeadReckoning),
+        weak_check(internal::WeakDirectionOf(checked)),
         pace_check({mode == MotionPrior::kDeadReckoning &&
                             checked.dead_reckoning.stride_interpolation.enabled
                         ? checked.pace_check_tolerance
@@ -134,6 +141,7 @@ struct LaserOdometry::Impl {
   internal::SeenThroughPoints seen_through;
   scan_matching::Points2 previous_points;
   geometry::Pose2 smooth_increment;
+  internal::WeakDirection weak_check;  // degenerate and slid matches keep the prior along the weak direction
   // People with spread strides (pace_check_*): the raw stream moves in whole strides, a pace
   // over a few metres is off by up to one.
   internal::PaceCheck pace_check;

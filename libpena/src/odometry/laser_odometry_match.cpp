@@ -9,40 +9,6 @@
 #include "laser_odometry_impl.hpp"
 
 namespace pena::odometry {
-namespace {
-
-// Degenerate places (a featureless corridor): the matched translation is only trusted across
-// the weak direction of J^T J; along it the prior's component is kept instead of sliding. Weakly
-// constrained ones (below slide_ratio) too when the match slid farther than max_slide_m along it:
-// their few along-track points (floor hits moving with the person, one door frame) pulled it.
-// With degenerate_slide_backward_only only slides back against travel_m (the predicted motion
-// over the last scan interval) count: returns that move with the person only ever pull back.
-// Returns the weak direction (world frame, unit) when the prior's component was kept.
-std::optional<Eigen::Vector2d> KeepPriorAlongWeakDirection(const Eigen::Matrix3d& information,
-                                                           const LaserOdometryOptions& options,
-                                                           const geometry::Pose2& prior,
-                                                           const Eigen::Vector2d& travel_m,
-                                                           geometry::Pose2& pose) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(information.topLeftCorner<2, 2>());
-  const double weak = solver.eigenvalues()(0);
-  const double strong = solver.eigenvalues()(1);
-  if (!(strong > 0.0)) return std::nullopt;
-  const Eigen::Vector2d direction = solver.eigenvectors().col(0);
-  const Eigen::Vector2d offset(prior.x_m - pose.x_m, prior.y_m - pose.y_m);
-  const double slide_m = std::abs(direction.dot(offset));
-  const bool degenerate = weak < options.degenerate_eigen_ratio * strong;
-  const Eigen::Vector2d shift = direction * direction.dot(offset);  // from the match to the prior
-  const bool backward = shift.dot(travel_m) > 0.0;
-  const bool slid = weak < options.degenerate_slide_ratio * strong &&
-                    slide_m > options.degenerate_max_slide_m &&
-                    (!options.degenerate_slide_backward_only || backward);
-  if (!degenerate && !slid) return std::nullopt;
-  pose.x_m += shift.x();
-  pose.y_m += shift.y();
-  return direction;
-}
-
-}  // namespace
 
 void LaserOdometry::Impl::CheckPace(const Eigen::Matrix3d& information,
                                     const geometry::Pose2& prior) {
@@ -127,8 +93,7 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
   match_information = result.information;
   match_reference_covariance = ReferenceCovariance(estimate);  // before a keyframe changes it
   const Eigen::Vector2d travel_m(prior.x_m - previous_estimate.x_m, prior.y_m - previous_estimate.y_m);
-  match_weak_direction =
-      KeepPriorAlongWeakDirection(result.information, options, prior, travel_m, estimate);
+  match_weak_direction = weak_check.Apply(result.information, prior, travel_m, estimate);
   if (!match_weak_direction) CheckPace(result.information, prior);
   const bool degenerate = match_weak_direction.has_value();
   out.status = degenerate ? MatchStatus::kDegenerate : MatchStatus::kMatched;

@@ -59,13 +59,16 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           "pace_check_window_m", "> 0 m and finite", o.pace_check_window_m);
   Require(o.pace_check_weak_ratio >= 0.0 && o.pace_check_weak_ratio <= 1.0,
           "pace_check_weak_ratio", "in [0, 1]", o.pace_check_weak_ratio);
-  Require(o.degenerate_slide_ratio >= 0.0 && o.degenerate_slide_ratio < 1.0,
-          "degenerate_slide_ratio", "in [0, 1) (0: off)", o.degenerate_slide_ratio);
+  Require((o.degenerate_slide_ratio >= 0.0 && o.degenerate_slide_ratio < 1.0) ||
+              o.degenerate_slide_ratio == LaserOdometryOptions::kAutoSlideRatio,
+          "degenerate_slide_ratio", "in [0, 1) (0: off) or -1 (auto: 0.2 for people with spread strides)",
+          o.degenerate_slide_ratio);
   Require(o.degenerate_max_slide_m > 0.0, "degenerate_max_slide_m", "> 0 m",
           o.degenerate_max_slide_m);
-  Require(!o.degenerate_slide_backward_only || o.degenerate_slide_ratio > 0.0,
-          "degenerate_slide_backward_only", "off unless degenerate_slide_ratio > 0 (flag)",
-          o.degenerate_slide_backward_only ? 1.0 : 0.0);
+  Require(o.degenerate_slide_max_across_m >= 0.0, "degenerate_slide_max_across_m", ">= 0 m (0: no check)",
+          o.degenerate_slide_max_across_m);
+  Require(o.degenerate_slide_prior_agreed_m >= 0.0, "degenerate_slide_prior_agreed_m", ">= 0 m (0: no check)",
+          o.degenerate_slide_prior_agreed_m);
   Require(o.reference_fill_spacing_m >= 0.0, "reference_fill_spacing_m", ">= 0 m (0: no fill)",
           o.reference_fill_spacing_m);
   Require(o.reference_fill_max_gap_m > 0.0, "reference_fill_max_gap_m", "> 0 m",

@@ -144,19 +144,34 @@ struct LaserOdometryOptions {
   double pace_check_tolerance = 0.1;
   double pace_check_window_m = 4.0;
   double pace_check_weak_ratio = 0.2;
-  // Weakly constrained places (ratio below degenerate_slide_ratio: a corridor whose only
-  // along-track features are a few door frames, or floor hits across it that move with the
-  // person): a match that slid more than degenerate_max_slide_m along the weak direction away from
-  // the prior is treated as degenerate too. 0 disables. See docs/dead-reckoning.md.
-  double degenerate_slide_ratio = 0.0;
-  double degenerate_max_slide_m = 0.1;
-  // With degenerate_slide_ratio: only slides back against the direction of travel (the predicted
-  // motion over the last scan interval) count. Returns that move with the person (a bend's floor
-  // line across a corridor a few metres ahead, far floor hits along it) read as an end wall that
-  // keeps its distance, so they always pull the match back towards the reference keyframes; a
-  // genuine correction of the prior can go either way (loop170 seed 8 at 106.75-109 s,
-  // docs/odometry.md, twelfth round d5). Off by default.
-  bool degenerate_slide_backward_only = false;
+  // Weakly constrained places (translation eigenvalue ratio below degenerate_slide_ratio: a
+  // corridor whose only along-track features are a few door frames, or floor hits across it that
+  // move with the person): a match that slid more than degenerate_max_slide_m along the weak
+  // direction away from the prior is treated as degenerate too (the prior's component is kept).
+  // kAutoSlideRatio (the default): kPeopleSlideRatio for people whose strides are spread over
+  // their scans (dead reckoning, dead_reckoning.stride_interpolation on), off otherwise: between
+  // keyframes such matches fell 0.2-0.5 m behind a prior that was right (office seed 5 at
+  // 104.75-106.25 s) and the output jumped back and forth (docs/odometry.md, session 24). 0: off.
+  static constexpr double kAutoSlideRatio = -1.0;
+  static constexpr double kPeopleSlideRatio = 0.2;
+  double degenerate_slide_ratio = kAutoSlideRatio;
+  double degenerate_max_slide_m = 0.15;
+  // Only slides back against the direction of travel (the predicted motion over the last scan
+  // interval) count. Returns that move with the person (a bend's floor line across a corridor a
+  // few metres ahead, far floor hits along it) read as an end wall that keeps its distance, so
+  // they always pull the match back towards the reference keyframes; a genuine correction of the
+  // prior can go either way, and over 48 simulated walks the prior was nearer the truth in 75 %
+  // of the backward slides but in only 37 % of the forward ones (session 24). Off: both ways.
+  bool degenerate_slide_backward_only = true;
+  // The prior's component is kept only where the prior lies within this of the match across the
+  // weak direction: a prior that is off across a corridor (a side step the stride model reads as
+  // a step forward: office seed 8 at 7 s, 0.3 m) is off along it too. 0: no such check.
+  double degenerate_slide_max_across_m = 0.1;
+  // ... and only while the latest match that pinned the position down (ratio at or above
+  // degenerate_slide_ratio) lay within this of its own prior: after a step back or a stop the
+  // stride model reads as steps forward, and the prior is off until a keyframe re-anchors it
+  // (team seed 1 ff1 at 15 s: 0.3 m). 0: no such check.
+  double degenerate_slide_prior_agreed_m = 0.15;
   // People only (dead reckoning): returns that move with the body are dropped from the scan before
   // it is matched or made a keyframe (odometry::internal::WalkerFixedPoints): a return near where
   // one of the previous scan's was in the laser frame, but not near the previous scan moved by the
