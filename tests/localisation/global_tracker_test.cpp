@@ -39,7 +39,7 @@ std::pair<int, double> FirstCorridorDecision(
   return {0, 0.0};
 }
 
-// Walks west from the entrance (0.5 m steps, perfect scans of the true walls, the odometry frame
+// Walks west from the entrance (0.5 m steps, up to 15 m, perfect scans of the true walls, the odometry frame
 // an arbitrary placement of the plan frame) until `tracker` decides, and checks it decided the
 // true pose.
 void ExpectSettlesOnTheTruePoseWalkingWest(const VirtualScanner& truth_scanner,
@@ -47,7 +47,7 @@ void ExpectSettlesOnTheTruePoseWalkingWest(const VirtualScanner& truth_scanner,
   const geometry::Pose2 odom_from_map{3.0, -7.0, 40.0 * kDeg};
   std::optional<PoseHypothesis> decided;
   geometry::Pose2 truth;
-  for (int step = 0; step < 16 && !decided; ++step) {
+  for (int step = 0; step < 30 && !decided; ++step) {  // 15 m: min_travel_m is 6 m
     truth = {40.5 - 0.5 * step, 14.0, 180.0 * kDeg};
     const auto scan = truth_scanner.Scan(truth, testing::OfficeLaser(), 361);
     decided = tracker.Update(scan, geometry::Compose(odom_from_map, truth)).decided;
@@ -189,7 +189,7 @@ TEST(GlobalTracker, HeadingToleranceKeepsEveryTrackWithinIt) {
   const geometry::Pose2 odom_from_map{3.0, -7.0, 10.0 * kDeg};
   std::optional<PoseHypothesis> decided;
   geometry::Pose2 truth;
-  for (int step = 0; step < 16 && !decided; ++step) {
+  for (int step = 0; step < 30 && !decided; ++step) {  // 15 m: min_travel_m is 6 m
     truth = {40.5 - 0.5 * step, 14.0, 180.0 * kDeg};
     const geometry::Pose2 odom_from_body = geometry::Compose(odom_from_map, truth);
     const TrackerUpdate update = tracker.Update(truth_scanner.Scan(truth, testing::OfficeLaser(), 361), odom_from_body);
@@ -242,6 +242,7 @@ TEST(GlobalTracker, DecidesNothingOnAScanThatSeesLittle) {
   EXPECT_LT(at_latest, at_default);
   EXPECT_LT(error_latest_m, 0.1);
   options.min_decide_return_fraction = 0.0;
+  options.min_travel_m = 3.0;  // the default until session 24: decided within the thin keyframes
   const auto [at_any, error_any_m] = FirstCorridorDecision(options, thin);
   EXPECT_GT(at_any, 0);
   EXPECT_LE(at_any, kThinKeyframes);

@@ -15,7 +15,8 @@ namespace pena::cli::localise {
 // global.compass_tolerance_deg (LocalisationChainOptions::compass_tolerance_rad, in degrees),
 // global.freeze_history_keyframes, global.boundary_fraction, global.freeze_ranking,
 // global.answer_on_plan (0/1), global.return_fit_keyframes, global.min_followed_keyframes,
-// global.min_decide_return_fraction and global.min_decide_return_keyframes (GlobalTrackerOptions),
+// global.min_decide_return_fraction, global.min_decide_return_keyframes and global.min_travel_m
+// (GlobalTrackerOptions),
 // global.agreement_tolerance_m (GlobalLocaliserOptions), relocalise_after_rounds
 // (LocalisationChainOptions, plan rounds; 0 = off) and plan_adaptation.* (PlanAdaptationOptions);
 // integer options are rounded; unknown names are errors. The options are validated by
@@ -53,7 +54,8 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                      {"plan_adaptation.openings.hit_m", &o.plan_adaptation.openings.hit_m},
                      {"global.boundary_fraction", &chain.tracker.boundary_fraction},
                      {"global.agreement_tolerance_m", &chain.global.agreement_tolerance_m},
-                     {"global.min_decide_return_fraction", &chain.tracker.min_decide_return_fraction}};
+                     {"global.min_decide_return_fraction", &chain.tracker.min_decide_return_fraction},
+                     {"global.min_travel_m", &chain.tracker.min_travel_m}};
   targets.ints = {{"min_hits", &o.min_hits},
                   {"outside_after_failures", &o.outside_after_failures},
                   {"oversample", &o.oversample},
