@@ -225,24 +225,26 @@ TEST(LaserOdometry, PaceCheckHoldsCorridorSlidesBack) {
               kWalks, checked_sum_m / kWalks, unchecked_sum_m / kWalks, held);
 }
 
+// A person's odometry with `options` is refused with a message naming `field`.
+void ExpectRefused(const LaserOdometryOptions& options, const std::string& field) {
+  try {
+    LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
+    ADD_FAILURE() << "accepted " << field;
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
+  }
+}
+
 TEST(LaserOdometry, RefusesAPaceCheckOutOfRangeNamingTheField) {
-  const auto refused = [](LaserOdometryOptions options, const std::string& field) {
-    try {
-      LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
-      ADD_FAILURE() << "accepted " << field;
-    } catch (const std::invalid_argument& error) {
-      EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
-    }
-  };
   LaserOdometryOptions options;
   options.pace_check_tolerance = 1.0;
-  refused(options, "pace_check_tolerance");
+  ExpectRefused(options, "pace_check_tolerance");
   options = {};
   options.pace_check_window_m = 0.0;
-  refused(options, "pace_check_window_m");
+  ExpectRefused(options, "pace_check_window_m");
   options = {};
   options.pace_check_weak_ratio = -0.1;
-  refused(options, "pace_check_weak_ratio");
+  ExpectRefused(options, "pace_check_weak_ratio");
 }
 
 // The direction flag is a mode of the slide check: with the check off (ratio 0) it changes
@@ -262,23 +264,15 @@ TEST(LaserOdometry, BackwardOnlySlideIsAModeOfTheSlideCheck) {
 }
 
 TEST(LaserOdometry, RefusesASlideCheckOutOfRangeNamingTheField) {
-  const auto refused = [](LaserOdometryOptions options, const std::string& field) {
-    try {
-      LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
-      ADD_FAILURE() << "accepted " << field;
-    } catch (const std::invalid_argument& error) {
-      EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
-    }
-  };
   LaserOdometryOptions options;
   options.degenerate_slide_ratio = -0.5;  // -1 is auto, other negatives are errors
-  refused(options, "degenerate_slide_ratio");
+  ExpectRefused(options, "degenerate_slide_ratio");
   options = {};
   options.degenerate_slide_max_across_m = -0.1;
-  refused(options, "degenerate_slide_max_across_m");
+  ExpectRefused(options, "degenerate_slide_max_across_m");
   options = {};
   options.degenerate_slide_prior_agreed_m = -0.1;
-  refused(options, "degenerate_slide_prior_agreed_m");
+  ExpectRefused(options, "degenerate_slide_prior_agreed_m");
 }
 
 TEST(LaserOdometry, ScanGoingBackInTimeIsIgnored) {
