@@ -20,12 +20,7 @@ MapLocaliser WalkPastTheArchive(const MapLocaliserOptions& options, double* wors
   *worst_error_m = 0.0;
   double stamp_s = 0.0;
   for (double x = 20.0; x <= 33.0; x += 0.5) {
-    const geometry::Pose2 pose{x, 14.0, 0.0};
-    odometry::OdometryEstimate estimate;
-    estimate.stamp_s = stamp_s += 0.5;
-    estimate.world_from_body = pose;
-    estimate.reference_changed = true;
-    localiser.Update(truth.Scan(pose, testing::OfficeLaser(), 361, stamp_s), estimate);
+    testing::PerfectRound(localiser, truth, {x, 14.0, 0.0}, stamp_s += 0.5);
     const geometry::Pose2 got = localiser.map_from_body();
     *worst_error_m = std::max(*worst_error_m, std::hypot(got.x_m - x, got.y_m - 14.0));
   }

@@ -108,8 +108,8 @@ void PrintResult(const LocaliseArgs& args, const Run& run, const std::optional<T
                  const std::optional<TruthErrors>& online_errors) {
   const Counts c = CountRun(run);
   std::cout << run.poses.size() << " scans, " << c.rounds << " plan rounds: " << c.accepted << " accepted, "
-            << c.outside_rounds << " outside the plan, " << c.reacquired << " re-acquired; "
-            << Fixed(run.wall_s, 2) << " s wall\n";
+            << c.outside_rounds << " outside the plan, " << c.reacquired << " re-acquired, " << c.ends_corrected
+            << " moved back by the plan's wall ends; " << Fixed(run.wall_s, 2) << " s wall\n";
   if (!run.plan_shifts.empty()) {
     std::cout << "plan adaptation: " << run.plan_shifts.size() << " segment(s) moved:";
     for (const localisation::SegmentShift& shift : run.plan_shifts) {

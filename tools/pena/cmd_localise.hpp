@@ -58,7 +58,7 @@ struct TruthErrors {
 
 // The rounds of the status timeline, counted.
 struct Counts {
-  long rounds = 0, accepted = 0, reacquired = 0, outside_rounds = 0, outside_scans = 0;
+  long rounds = 0, accepted = 0, reacquired = 0, outside_rounds = 0, outside_scans = 0, ends_corrected = 0;
   double mean_confidence = 0.0;  // over accepted rounds
 };
 

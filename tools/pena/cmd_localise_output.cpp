@@ -46,7 +46,7 @@ void WriteStatusCsv(const std::filesystem::path& path, const Run& run) {
   std::ofstream out(path);
   out << "stamp,status,accepted,confidence,score,hits,points,virtual_points,constraint_ratio,"
          "degenerate,along_drop,window_xy_m,window_theta_deg,correction_x,correction_y,correction_theta_deg,"
-         "x,y,theta,recast,first_score\n";
+         "x,y,theta,recast,first_score,ends_corrected\n";
   for (const localisation::MapCorrection& r : run.rounds) {
     const geometry::Pose2& c = r.correction;
     const geometry::Pose2& p = r.map_from_body_after;
@@ -56,7 +56,7 @@ void WriteStatusCsv(const std::filesystem::path& path, const Run& run) {
         << ',' << Fixed(r.along_drop, 3) << ',' << Fixed(r.window_xy_m, 3) << ',' << Fixed(r.window_theta_rad / kDeg, 2) << ','
         << Fixed(c.x_m, 4) << ',' << Fixed(c.y_m, 4) << ',' << Fixed(c.theta_rad / kDeg, 3) << ','
         << Fixed(p.x_m, 4) << ',' << Fixed(p.y_m, 4) << ',' << Fixed(p.theta_rad, 5) << ','
-        << (r.recast ? 1 : 0) << ',' << Fixed(r.first_score, 3) << '\n';
+        << (r.recast ? 1 : 0) << ',' << Fixed(r.first_score, 3) << ',' << (r.ends_corrected ? 1 : 0) << '\n';
   }
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
 }
@@ -125,6 +125,7 @@ Counts CountRun(const Run& run) {
     if (r.accepted) ++c.accepted, c.mean_confidence += r.confidence;
     if (r.status == localisation::MapStatus::kReacquired) ++c.reacquired;
     if (r.status == localisation::MapStatus::kOutsideMap) ++c.outside_rounds;
+    if (r.ends_corrected) ++c.ends_corrected;
   }
   for (const auto& p : run.poses) c.outside_scans += p.status == localisation::MapStatus::kOutsideMap ? 1 : 0;
   if (c.accepted > 0) c.mean_confidence /= static_cast<double>(c.accepted);
@@ -184,7 +185,8 @@ void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, c
   out << "{\"log\": " << JsonString(args.log) << ", \"map\": " << JsonString(args.map)
       << ", \"start_pose_source\": " << JsonString(run.start_source) << ", \"records\": " << run.records
       << ", \"scans\": " << run.poses.size() << ", \"rounds\": " << c.rounds << ", \"accepted\": " << c.accepted
-      << ", \"reacquired\": " << c.reacquired << ", \"outside_rounds\": " << c.outside_rounds
+      << ", \"reacquired\": " << c.reacquired << ", \"ends_corrected\": " << c.ends_corrected
+      << ", \"outside_rounds\": " << c.outside_rounds
       << ", \"outside_scans\": " << c.outside_scans << ", \"mean_confidence\": " << Fixed(c.mean_confidence, 3)
       << ", \"global\": " << GlobalJson(run) << ", \"plan_shifts\": " << ShiftsJson(run)
       << ", \"plan_openings\": " << OpeningsJson(run)

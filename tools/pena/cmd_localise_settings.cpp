@@ -52,6 +52,14 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                      {"plan_adaptation.openings.bin_m", &o.plan_adaptation.openings.bin_m},
                      {"plan_adaptation.openings.min_width_m", &o.plan_adaptation.openings.min_width_m},
                      {"plan_adaptation.openings.hit_m", &o.plan_adaptation.openings.hit_m},
+                     {"plan_adaptation.ends.join_m", &o.plan_adaptation.ends.join_m},
+                     {"plan_adaptation.ends.across_m", &o.plan_adaptation.ends.across_m},
+                     {"plan_adaptation.ends.window_m", &o.plan_adaptation.ends.window_m},
+                     {"plan_adaptation.ends.max_gap_m", &o.plan_adaptation.ends.max_gap_m},
+                     {"plan_adaptation.ends.past_rad", &o.plan_adaptation.ends.past_rad},
+                     {"plan_adaptation.ends.past_m", &o.plan_adaptation.ends.past_m},
+                     {"plan_adaptation.ends.max_spread_m", &o.plan_adaptation.ends.max_spread_m},
+                     {"plan_adaptation.ends.min_error_m", &o.plan_adaptation.ends.min_error_m},
                      {"global.boundary_fraction", &chain.tracker.boundary_fraction},
                      {"global.agreement_tolerance_m", &chain.global.agreement_tolerance_m},
                      {"global.min_decide_return_fraction", &chain.tracker.min_decide_return_fraction},
@@ -68,14 +76,17 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                   {"plan_adaptation.min_points", &o.plan_adaptation.min_points},
                   {"plan_adaptation.min_rounds", &o.plan_adaptation.min_rounds},
                   {"plan_adaptation.openings.min_through_points", &o.plan_adaptation.openings.min_through_points},
-                  {"plan_adaptation.openings.min_rounds", &o.plan_adaptation.openings.min_rounds}};
+                  {"plan_adaptation.openings.min_rounds", &o.plan_adaptation.openings.min_rounds},
+                  {"plan_adaptation.ends.min_points", &o.plan_adaptation.ends.min_points},
+                  {"plan_adaptation.ends.min_ends", &o.plan_adaptation.ends.min_ends}};
   targets.flags = {{"global.answer_on_plan", &chain.tracker.answer_on_plan},
                    {"reacquire_pinned", &o.reacquire_pinned},
                    {"require_interior", &o.require_interior},
                    {"along_search_failed", &o.along_search_failed},
                    {"along_search_unique", &o.along_search_unique},
                    {"plan_adaptation.enabled", &o.plan_adaptation.enabled},
-                   {"plan_adaptation.openings.enabled", &o.plan_adaptation.openings.enabled}};
+                   {"plan_adaptation.openings.enabled", &o.plan_adaptation.openings.enabled},
+                   {"plan_adaptation.ends.enabled", &o.plan_adaptation.ends.enabled}};
   for (const std::string& text : settings) {
     if (text.starts_with(kSmooth)) continue;  // SmootherOptions, with --smooth
     if (text.starts_with(kOdometry)) {

@@ -95,7 +95,10 @@ MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
     // the plan does not fit where the odometry put the entity (along_search_failed).
     if (auto along = AlongSearch(scan, real, round, *found)) round = *along;
   }
-  if (round.accepted && options.require_interior && found && !found->interior_xy && !round.recast) {
+  // The ends first: a round they move back is pinned by them, wherever the match's optimum lay.
+  if (round.accepted) CheckEnds(real, round);
+  if (round.accepted && options.require_interior && found && !found->interior_xy && !round.recast &&
+      !round.ends_corrected) {
     round.accepted = false;  // an edge optimum: the place may lie beyond the window
     round.correction = {};
   }
@@ -109,6 +112,23 @@ MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
   return round;
 }
 
+void MapLocaliser::Impl::CheckEnds(const scan_matching::Points2& real, MapCorrection& round) const {
+  const PlanEndOptions& o = options.plan_adaptation.ends;
+  if (!o.enabled) return;
+  const geometry::Pose2 after = geometry::Compose(round.map_from_body_before, round.correction);
+  scan_matching::Points2 on_map;
+  on_map.reserve(real.size());
+  for (const Eigen::Vector2d& p : real) on_map.push_back(geometry::TransformPoint(after, p));
+  const std::optional<Eigen::Vector2d> error =
+      adaptation.ErrorAtEnds(on_map, Eigen::Vector2d(after.x_m, after.y_m), after.theta_rad);
+  if (!error || error->norm() < o.min_error_m) return;
+  // The round matched onto walls drawn off while the plan's own ends say otherwise (the office's
+  // east end: rooms' end walls 0.3 m east seen through the doors, the jambs drawn right).
+  const geometry::Pose2 moved{after.x_m - error->x(), after.y_m - error->y(), after.theta_rad};
+  round.correction = geometry::Between(round.map_from_body_before, moved);
+  round.ends_corrected = true;
+}
+
 void MapLocaliser::Impl::Learn(const scan_matching::Points2& real, const MapCorrection& round, double walked_m) {
   if (!options.plan_adaptation.enabled) return;
   const geometry::Pose2& map_from_body = round.map_from_body_after;
@@ -116,7 +136,7 @@ void MapLocaliser::Impl::Learn(const scan_matching::Points2& real, const MapCorr
   const RoundView view{Eigen::Vector2d(map_from_body.x_m, map_from_body.y_m),
                        Eigen::Vector3d(map_from_body.x_m - before.x_m, map_from_body.y_m - before.y_m,
                                        geometry::NormalizeAngle(map_from_body.theta_rad - before.theta_rad)),
-                       walked_m};
+                       walked_m, map_from_body.theta_rad};
   scan_matching::Points2 on_map;
   on_map.reserve(real.size());
   for (const Eigen::Vector2d& p : real) on_map.push_back(geometry::TransformPoint(map_from_body, p));

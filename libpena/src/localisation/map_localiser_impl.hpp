@@ -94,6 +94,8 @@ struct MapLocaliser::Impl {
   void Conclude(const geometry::Pose2& odom_from_body, MapCorrection& round);
   // An accepted round's returns (body frame) measure the plan's walls (plan_adaptation).
   void Learn(const scan_matching::Points2& real, const MapCorrection& round, double walked_m);
+  // Moves an accepted round's corrected pose back where the plan's free wall ends agree it is.
+  void CheckEnds(const scan_matching::Points2& real, MapCorrection& round) const;
   // A re-acquisition on a round its scan does not pin down in every direction (reacquire_pinned).
   bool WeakReacquisition(const MapCorrection& round) const;
 };

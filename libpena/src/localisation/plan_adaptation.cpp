@@ -1,12 +1,14 @@
 #include "pena/localisation/plan_adaptation.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
 
 #include "pena/options_check.hpp"
+#include "plan_ends.hpp"
 
 namespace pena::localisation {
 namespace {
@@ -95,11 +97,23 @@ void ValidatePlanAdaptationOptions(const PlanAdaptationOptions& o) {
   Require(o.prior_sigma_rad_per_m >= 0.0, "prior_sigma_rad_per_m", ">= 0 rad/m", o.prior_sigma_rad_per_m);
   Require(o.prior_facing_sigma_m >= 0.0, "prior_facing_sigma_m", ">= 0 m", o.prior_facing_sigma_m);
   ValidatePlanOpeningsOptions(o.openings);
+  const PlanEndOptions& e = o.ends;
+  Require(e.join_m >= 0.0, "ends.join_m", ">= 0 m", e.join_m);
+  Require(e.across_m > 0.0, "ends.across_m", "> 0 m", e.across_m);
+  Require(e.window_m > 0.0, "ends.window_m", "> 0 m", e.window_m);
+  Require(e.min_points >= 2, "ends.min_points", ">= 2", e.min_points);
+  Require(e.max_gap_m > 0.0, "ends.max_gap_m", "> 0 m", e.max_gap_m);
+  Require(e.past_rad > 0.0, "ends.past_rad", "> 0 rad", e.past_rad);
+  Require(e.past_m >= 0.0, "ends.past_m", ">= 0 m", e.past_m);
+  Require(e.min_ends >= 1, "ends.min_ends", ">= 1", e.min_ends);
+  Require(e.max_spread_m >= 0.0, "ends.max_spread_m", ">= 0 m", e.max_spread_m);
+  Require(e.min_error_m >= 0.0, "ends.min_error_m", ">= 0 m", e.min_error_m);
 }
 
 PlanAdaptation::PlanAdaptation(const PlanAdaptationOptions& options, std::vector<geometry::Segment2> plan)
     : options_(options), plan_(std::move(plan)), evidence_(plan_.size()), openings_(options.openings) {
   ValidatePlanAdaptationOptions(options_);
+  ends_ = internal::FreeEnds(plan_, options_.ends.join_m);
 }
 
 std::vector<int> PlanAdaptation::SegmentsNear(const scan_matching::Points2& points) const {
@@ -239,7 +253,23 @@ bool PlanAdaptation::Observe(const scan_matching::Points2& map_points, const Rou
   const std::vector<PlanOpening> cuts = openings_.Observe(map_points, view.origin_m, plan_);
   evidence_.resize(plan_.size());
   for (const PlanOpening& cut : cuts) evidence_[static_cast<std::size_t>(cut.index)] = {};
+  EndsAfterCuts(cuts);
   return moved || !cuts.empty();
+}
+
+void PlanAdaptation::EndsAfterCuts(const std::vector<PlanOpening>& cuts) {
+  ends_.resize(plan_.size());
+  for (const PlanOpening& cut : cuts) {
+    SegmentEnds& kept = ends_[static_cast<std::size_t>(cut.index)];
+    if (cut.added_index >= 0) {  // both parts: the kept one ends at the cut, the added one starts there
+      ends_[static_cast<std::size_t>(cut.added_index)] = {false, kept.end};
+      kept.end = false;
+    } else if ((plan_[static_cast<std::size_t>(cut.index)].end_m - cut.stretch.start_m).norm() < 1e-9) {
+      kept.end = false;  // only the part before the opening was kept
+    } else {
+      kept.start = false;  // only the part after it
+    }
+  }
 }
 
 bool PlanAdaptation::Weigh(int segment, double offset_m) {
@@ -261,6 +291,33 @@ bool PlanAdaptation::Weigh(int segment, double offset_m) {
   Move(segment, mean, static_cast<int>(offsets.size()));
   offsets.clear();
   return true;
+}
+
+std::optional<Eigen::Vector2d> PlanAdaptation::ErrorAtEnds(const scan_matching::Points2& map_points,
+                                                            const Eigen::Vector2d& origin_m, double heading_rad) const {
+  const PlanEndOptions& o = options_.ends;
+  const std::vector<internal::EndMeasurement> ends =
+      internal::MeasureEnds(plan_, ends_, map_points, origin_m, heading_rad, o);
+  if (static_cast<int>(ends.size()) < o.min_ends) return std::nullopt;
+  Eigen::Matrix2d information = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+  for (const internal::EndMeasurement& end : ends) {
+    information += end.outward * end.outward.transpose();
+    moment += end.residual_m * end.outward;
+  }
+  // Only the directions that min_ends ends pin down: a corridor's jambs say nothing across it.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(information);
+  Eigen::Vector2d error = Eigen::Vector2d::Zero();
+  for (int k = 0; k < 2; ++k) {
+    const double value = solver.eigenvalues()(k);
+    const Eigen::Vector2d direction = solver.eigenvectors().col(k);
+    if (value >= 0.9 * o.min_ends) error += direction * direction.dot(moment) / value;
+  }
+  if (error.isZero()) return std::nullopt;
+  double misfit = 0.0;
+  for (const internal::EndMeasurement& end : ends) misfit += std::pow(end.residual_m - end.outward.dot(error), 2);
+  if (std::sqrt(misfit / static_cast<double>(ends.size())) > o.max_spread_m) return std::nullopt;
+  return error;
 }
 
 bool PlanAdaptation::OnOneLine(int a, int b) const {

@@ -125,6 +125,8 @@ struct MapCorrection {
   double window_theta_rad = 0.0;
   bool recast = false;        // judged again where a search put it (recast_min_m, along_search_m)
   double first_score = 0.0;   // eq. 2 of the first search (= score when not recast)
+  // Moved back by what the plan's free wall ends agreed on (PlanEndOptions::min_error_m).
+  bool ends_corrected = false;
 };
 
 // Matches keyframes of one entity's laser odometry against an a priori plan. Not thread-safe.

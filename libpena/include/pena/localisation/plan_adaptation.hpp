@@ -17,6 +17,30 @@
 
 namespace pena::localisation {
 
+// The plan's free wall ends (door jambs, a corridor's end) as references along their walls
+// (docs/localisation.md, "Wall ends"). An end is measured in a round where the returns along its
+// wall's line (within across_m of it, window_m of the end) run densely up to it (the last
+// min_points within max_gap_m of each other) and the laser saw past the last one: the nearest
+// return beyond it in bearing, within past_rad, lies past_m or more farther away (and its bearing
+// is past_rad inside the scan's span).
+struct PlanEndOptions {
+  // On by default: the office's east end (docs/localisation.md, "Session 25").
+  bool enabled = true;
+  double join_m = 0.1;          // an end with another segment this near is a corner, not a reference
+  double across_m = 0.1;
+  double window_m = 0.6;
+  int min_points = 4;
+  double max_gap_m = 0.2;
+  double past_rad = 0.053;  // 3 deg
+  double past_m = 0.3;
+  // A round's corrected pose is moved back when at least min_ends measured ends agree (RMS misfit
+  // at most max_spread_m) that it is off by min_error_m or more along the directions they pin
+  // down (each end pins its wall's direction; a direction needs min_ends ends' worth).
+  int min_ends = 2;
+  double max_spread_m = 0.05;
+  double min_error_m = 0.15;
+};
+
 // Options of the plan adaptation; validated by PlanAdaptation's (and MapLocaliser's) constructor.
 struct PlanAdaptationOptions {
   // On by default: measured better on every scenario and no worse on the real logs
@@ -51,6 +75,7 @@ struct PlanAdaptationOptions {
   // Walls drawn across real openings are cut where the rounds see far through them
   // (plan_openings.hpp; docs/localisation.md, "Plan adaptation").
   PlanOpeningsOptions openings;
+  PlanEndOptions ends;
 };
 
 // Throws std::invalid_argument naming the field and unit.
@@ -63,6 +88,7 @@ struct RoundView {
   Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
   Eigen::Vector3d correction = Eigen::Vector3d::Zero();
   double walked_m = 0.0;
+  double heading_rad = 0.0;  // the body's heading in the map frame (the laser's field of view)
 };
 
 // A segment the adaptation moved: its index in the plan and the total move along its normal.
@@ -70,6 +96,13 @@ struct SegmentShift {
   int index = 0;
   double offset_m = 0.0;  // along the segment's left normal (direction rotated +90 deg)
   int rounds = 0;         // rounds that measured it when it was last moved
+};
+
+// Which ends of a plan segment are references along it: free ends as drawn. An end made by
+// cutting an opening is not (it lies on the openings' bin grid).
+struct SegmentEnds {
+  bool start = false;
+  bool end = false;
 };
 
 // The plan and what was learned about it. Not thread-safe.
@@ -81,6 +114,13 @@ class PlanAdaptation {
   // laser was. Returns true when a segment was moved or cut (the caller re-casts from the new
   // plan).
   bool Observe(const scan_matching::Points2& map_points, const RoundView& view);
+
+  // Where the plan's free wall ends put a round taken at `origin_m` facing `heading_rad`, whose
+  // returns in the map frame are `map_points`: the translation error of that pose (map frame;
+  // zero across directions the ends do not pin down) when at least ends.min_ends agree;
+  // nullopt otherwise.
+  std::optional<Eigen::Vector2d> ErrorAtEnds(const scan_matching::Points2& map_points, const Eigen::Vector2d& origin_m,
+                                             double heading_rad) const;
 
   const std::vector<geometry::Segment2>& plan() const { return plan_; }
   // The segments moved so far, in the order they were first moved.
@@ -126,6 +166,8 @@ class PlanAdaptation {
   // the pose down along its normal (min_other_information).
   std::optional<double> OffsetAgainstOthers(int measured, const std::vector<Support>& support,
                                             const RoundView& view) const;
+  // Keeps ends_ in step with the plan after openings were cut.
+  void EndsAfterCuts(const std::vector<PlanOpening>& cuts);
   double PriorSigma(const RoundView& view) const;
   bool Facing(const RoundView& view) const;
   std::vector<Measurement> PriorRows(const RoundView& view) const;
@@ -139,6 +181,7 @@ class PlanAdaptation {
   std::vector<Evidence> evidence_;
   std::vector<SegmentShift> shifts_;
   PlanOpenings openings_;
+  std::vector<SegmentEnds> ends_;  // per segment of plan_
 };
 
 }  // namespace pena::localisation
