@@ -308,12 +308,15 @@ std::optional<Eigen::Vector2d> PlanAdaptation::ErrorAtEnds(const scan_matching::
   // Only the directions that min_ends ends pin down: a corridor's jambs say nothing across it.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(information);
   Eigen::Vector2d error = Eigen::Vector2d::Zero();
+  bool pinned = false;
   for (int k = 0; k < 2; ++k) {
     const double value = solver.eigenvalues()(k);
+    if (value < 0.9 * o.min_ends) continue;
     const Eigen::Vector2d direction = solver.eigenvectors().col(k);
-    if (value >= 0.9 * o.min_ends) error += direction * direction.dot(moment) / value;
+    error += direction * direction.dot(moment) / value;
+    pinned = true;
   }
-  if (error.isZero()) return std::nullopt;
+  if (!pinned) return std::nullopt;
   double misfit = 0.0;
   for (const internal::EndMeasurement& end : ends) misfit += std::pow(end.residual_m - end.outward.dot(error), 2);
   if (std::sqrt(misfit / static_cast<double>(ends.size())) > o.max_spread_m) return std::nullopt;

@@ -81,17 +81,16 @@ bool SeenPast(const scan_matching::Points2& points, const Run& run, const Eigen:
   return std::isfinite(nearest_rad) && nearest_range_m >= range_m + options.past_m;
 }
 
-// Whether `point` lies inside the angular span of the returns about the heading, by margin_rad.
-bool InsideFieldOfView(const scan_matching::Points2& points, const Eigen::Vector2d& origin_m, double heading_rad,
-                       const Eigen::Vector2d& point, double margin_rad) {
+// The bearings of the returns about the heading: lowest and highest (the scan's field of view).
+std::pair<double, double> BearingSpan(const scan_matching::Points2& points, const Eigen::Vector2d& origin_m,
+                                      double heading_rad) {
   double low = INFINITY, high = -INFINITY;
   for (const Eigen::Vector2d& p : points) {
     const double b = geometry::NormalizeAngle(Bearing(origin_m, p) - heading_rad);
     low = std::min(low, b);
     high = std::max(high, b);
   }
-  const double b = geometry::NormalizeAngle(Bearing(origin_m, point) - heading_rad);
-  return b >= low + margin_rad && b <= high - margin_rad;
+  return {low, high};
 }
 
 }  // namespace
@@ -122,6 +121,12 @@ std::vector<EndMeasurement> MeasureEnds(const std::vector<geometry::Segment2>& p
     return (end_m.array() >= low.array() - options.window_m).all() &&
            (end_m.array() <= high.array() + options.window_m).all();
   };
+  const auto [low_rad, high_rad] = BearingSpan(map_points, origin_m, heading_rad);
+  // The laser must have been able to see past an end: its bearing inside the span by past_rad.
+  const auto inside_view = [&](const Eigen::Vector2d& point) {
+    const double b = geometry::NormalizeAngle(Bearing(origin_m, point) - heading_rad);
+    return b >= low_rad + options.past_rad && b <= high_rad - options.past_rad;
+  };
   for (std::size_t i = 0; i < plan.size() && i < ends.size(); ++i) {
     const geometry::Segment2& s = plan[i];
     const double length_m = geometry::Length(s);
@@ -133,8 +138,8 @@ std::vector<EndMeasurement> MeasureEnds(const std::vector<geometry::Segment2>& p
       if (!near(end_m)) continue;
       const Eigen::Vector2d outward = at_end ? along : Eigen::Vector2d(-along);
       const Run run = RunAtEnd(map_points, end_m, outward, options);
-      if (!DenseAtItsEnd(run, options) || !SeenPast(map_points, run, origin_m, outward, options) ||
-          !InsideFieldOfView(map_points, origin_m, heading_rad, map_points[run.indices.back()], options.past_rad)) {
+      if (!DenseAtItsEnd(run, options) || !inside_view(map_points[run.indices.back()]) ||
+          !SeenPast(map_points, run, origin_m, outward, options)) {
         continue;
       }
       measured.push_back({static_cast<int>(i), end_m, outward, run.along_m.back()});
