@@ -94,6 +94,40 @@ TEST(CarmenReader, ReadsOdomAsWheelOdometry) {
   EXPECT_DOUBLE_EQ(odometry.yaw_rate_rad_s, -0.1);
 }
 
+// CARMEN does not say how long a scan takes: the reader gives every laser message the sweep of
+// its options (a SICK LMS 2xx's 1/150 s by default; docs/odometry.md, "Scan deskew").
+TEST(CarmenReader, GivesEveryLaserMessageTheSweepOfItsOptions) {
+  const std::string robot =
+      "ROBOTLASER1 0 -2.0 4.0 1.0 30 0.01 0 5 1 2 30 4 5 2 0.5 0.6 "
+      "1 2 0.1 0.9 1.9 0.05 0.2 0 0.5 0.5 0.1 7.5 host 7.5\n";
+  const std::string raw = "RAWLASER2 0 -1.0 2.0 0.5 10 0.01 0 5 1 2 3 10 11 0 8.0 host 8.0\n";
+  const auto path = WriteText("sweep.clf", FlaserLine(361, "2", "1") + robot + raw);
+  ReadOptions instantaneous;
+  instantaneous.carmen_sweep_s = 0.0;
+  for (const auto& [options, sweep_s] :
+       {std::pair{ReadOptions{}, 1.0 / 150.0}, std::pair{instantaneous, 0.0}}) {
+    const auto records = ReadAll(*OpenCarmenLog(path, options));
+    ASSERT_EQ(records.size(), 3u);
+    for (const auto& record : records) {
+      EXPECT_EQ(std::get<LaserScan>(record).geometry.sweep_s, sweep_s);
+    }
+  }
+  ReadOptions negative;
+  negative.carmen_sweep_s = -0.001;
+  EXPECT_THROW(
+      {
+        try {
+          OpenCarmenLog(path, negative);
+        } catch (const std::invalid_argument& error) {
+          EXPECT_NE(std::string(error.what()).find("carmen_sweep_s must be in [0, 1] s"),
+                    std::string::npos)
+              << error.what();
+          throw;
+        }
+      },
+      std::invalid_argument);
+}
+
 TEST(CarmenReader, ReadsRobotLaserAndRawLaserWithTheirStatedGeometry) {
   // ROBOTLASER1 type start fov res max acc rem n [r] m [rem] laser_pose robot_pose tv rv f s t ts h lts
   const std::string robot =

@@ -157,6 +157,7 @@ TEST(MissionLogErrors, RejectsUnknownMajorVersion) {
   testing::WriteLog(path, MakeHeader(), {});
   std::string bytes = testing::ReadBytes(path);
   bytes[8] = 2;
+  bytes[10] = 0;
   testing::WriteBytes(path, bytes);
   const std::string error = OpenError(path);
   EXPECT_NE(error.find("unsupported mission log format version 2.0"), std::string::npos) << error;
@@ -194,6 +195,19 @@ TEST(MissionLogErrors, WriterRejectsUnusableGeometryNamingFieldAndUnit) {
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what()).find("header.laser.max_range_m must be in"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(MissionLogErrors, WriterRejectsANegativeSweepNamingFieldAndUnit) {
+  MissionLogHeader header = MakeHeader();
+  header.laser.sweep_s = -0.01;
+  try {
+    MissionLogWriter writer(TempPath("sweep.penalog"), header);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("header.laser.sweep_s must be in [0, 1] s"),
               std::string::npos)
         << error.what();
   }

@@ -220,6 +220,8 @@ void WriteSummaryJson(const std::filesystem::path& path, const OdometryArgs& arg
   if (c.walker_fixed_dropped > 0) out << ", \"walker_fixed_dropped\": " << c.walker_fixed_dropped;
   if (c.seen_through_dropped > 0) out << ", \"seen_through_dropped\": " << c.seen_through_dropped;
   if (c.pace_held > 0) out << ", \"pace_held\": " << c.pace_held;
+  // Only for swept lasers (CARMEN logs): the simulated missions' summaries stay as they were.
+  if (c.deskewed > 0) out << ", \"deskewed\": " << c.deskewed;
   out << ", \"no_points\": " << c.no_points << ", \"prior_only\": " << run.prior_only
       << ", \"keyframes\": " << c.keyframes << ", \"wide_searches\": " << c.wide_searches
       << ", \"records_ignored\": " << c.records_ignored;
@@ -340,6 +342,12 @@ void AddOdometryCommand(CLI::App& app) {
       ->add_option("--max-range", args->read.carmen_max_range_m,
                    "CARMEN maximum range, metres: ranges at or above it are no-returns")
       ->check(CLI::Range(0.01, 1000.0))
+      ->capture_default_str();
+  command
+      ->add_option("--carmen-sweep", args->read.carmen_sweep_s,
+                   "CARMEN scans: seconds from the first beam to the last (SICK LMS 2xx: 1/150); "
+                   "0: all beams at the stamp")
+      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   command->add_option("--start", args->start,
                       "Start pose X,Y,THETA_DEG (m, m, deg); default: see docs/odometry.md");

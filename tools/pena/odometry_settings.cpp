@@ -54,6 +54,7 @@ std::map<std::string, double*> SettableOptions(odometry::LaserOdometryOptions& o
           {"reference_fill_max_gap_beams_bursty", &o.reference_fill_max_gap_beams_bursty},
           {"reference_fill_band_spacing_m", &o.reference_fill_band_spacing_m},
           {"timing_burst_gap_s", &o.timing_burst_gap_s},
+          {"deskew_min_interval_s", &o.deskew_min_interval_s},
           {"timing_burst_fraction", &o.timing_burst_fraction},
           {"prior_gate_rad", &o.prior_gate_rad},
           {"prior_gate_fraction", &o.prior_gate_fraction},
@@ -121,7 +122,8 @@ void ApplyOdometrySettings(const std::vector<std::string>& settings,
       {"keyframe_absorbs_stride_jumps", &o.keyframe_absorbs_stride_jumps},
       {"keyframe_stride_jump_share", &o.keyframe_stride_jump_share},
       {"keyframe_stride_jump_across_weak", &o.keyframe_stride_jump_across_weak},
-      {"local_map_place_fill_recent", &o.local_map_place_fill_recent}};
+      {"local_map_place_fill_recent", &o.local_map_place_fill_recent},
+      {"deskew_scans", &o.deskew_scans}};
   for (const std::string& text : settings) {
     const Setting setting = ParseSetting(text);
     if (!ApplySetting(targets, setting)) {

@@ -116,7 +116,7 @@ sensors::WheelOdometry ParseOdom(const Fields& fields) {
 
 // ROBOTLASER1 and RAWLASERn share the head: they state their own geometry and maximum range.
 // `tail` is the number of fields after the remissions.
-sensors::LaserScan ParseStatedLaser(const Fields& fields, std::size_t tail,
+sensors::LaserScan ParseStatedLaser(const Fields& fields, std::size_t tail, const ReadOptions& options,
                                     std::size_t* tail_start) {
   if (fields.size() < kLaserHeaderFields) Fail("laser line too short for its header");
   for (std::size_t i = 1; i < 8; ++i) Number(fields, i, "laser header");
@@ -124,6 +124,7 @@ sensors::LaserScan ParseStatedLaser(const Fields& fields, std::size_t tail,
   scan.geometry.angle_min_rad = Number(fields, 2, "start_angle");
   scan.geometry.angle_increment_rad = Number(fields, 4, "angular_resolution");
   scan.geometry.max_range_m = Number(fields, 5, "maximum_range");
+  scan.geometry.sweep_s = options.carmen_sweep_s;
   if (scan.geometry.max_range_m <= 0.0) {
     Fail("maximum_range " + std::string(fields[5]) + " m must be > 0 m");
   }
@@ -141,9 +142,9 @@ sensors::LaserScan ParseStatedLaser(const Fields& fields, std::size_t tail,
   return scan;
 }
 
-sensors::LaserScan ParseRobotLaser(const Fields& fields) {
+sensors::LaserScan ParseRobotLaser(const Fields& fields, const ReadOptions& options) {
   std::size_t tail = 0;
-  sensors::LaserScan scan = ParseStatedLaser(fields, kRobotLaserTailFields, &tail);
+  sensors::LaserScan scan = ParseStatedLaser(fields, kRobotLaserTailFields, options, &tail);
   scan.logged_pose = Pose(fields, tail, "laser_x", "laser_y", "laser_theta");
   scan.odometry_pose = Pose(fields, tail + 3, "robot_x", "robot_y", "robot_theta");
   for (std::size_t i = tail + 6; i < tail + 11; ++i) Number(fields, i, "velocity or safety");
@@ -151,9 +152,9 @@ sensors::LaserScan ParseRobotLaser(const Fields& fields) {
   return scan;
 }
 
-sensors::LaserScan ParseRawLaser(const Fields& fields) {
+sensors::LaserScan ParseRawLaser(const Fields& fields, const ReadOptions& options) {
   std::size_t tail = 0;
-  sensors::LaserScan scan = ParseStatedLaser(fields, kRawLaserTailFields, &tail);
+  sensors::LaserScan scan = ParseStatedLaser(fields, kRawLaserTailFields, options, &tail);
   scan.stamp_s = Number(fields, tail, "ipc_timestamp");
   return scan;
 }
@@ -170,6 +171,7 @@ sensors::LaserGeometry FlaserGeometry(std::size_t beam_count, const ReadOptions&
   constexpr double kOneDegree = std::numbers::pi / 180.0;
   sensors::LaserGeometry geometry;
   geometry.max_range_m = options.carmen_max_range_m;
+  geometry.sweep_s = options.carmen_sweep_s;
   if (beam_count < 2) return geometry;  // a single beam looks straight ahead
   geometry.angle_min_rad = -kHalfPi;
   // 181 and 361 beams span -90..+90 deg at 1 and 0.5 deg; 180 beams are ambiguous (option).
@@ -185,8 +187,8 @@ std::optional<CarmenMessage> ParseCarmenLine(std::string_view line, const ReadOp
   const std::string_view type = fields[0];
   if (type == "FLASER") return CarmenMessage{"FLASER", ParseFlaser(fields, options)};
   if (type == "ODOM") return CarmenMessage{"ODOM", ParseOdom(fields)};
-  if (type == "ROBOTLASER1") return CarmenMessage{"ROBOTLASER1", ParseRobotLaser(fields)};
-  if (IsRawLaser(type)) return CarmenMessage{std::string(type), ParseRawLaser(fields)};
+  if (type == "ROBOTLASER1") return CarmenMessage{"ROBOTLASER1", ParseRobotLaser(fields, options)};
+  if (IsRawLaser(type)) return CarmenMessage{std::string(type), ParseRawLaser(fields, options)};
   return std::nullopt;
 }
 

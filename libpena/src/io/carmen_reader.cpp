@@ -23,6 +23,10 @@ const ReadOptions& Validated(const ReadOptions& options) {
     throw std::invalid_argument("ReadOptions::carmen_max_range_m must be finite and > 0 m, got " +
                                 std::to_string(options.carmen_max_range_m));
   }
+  if (!(options.carmen_sweep_s >= 0.0 && options.carmen_sweep_s <= 1.0)) {
+    throw std::invalid_argument("ReadOptions::carmen_sweep_s must be in [0, 1] s, got " +
+                                std::to_string(options.carmen_sweep_s));
+  }
   return options;
 }
 

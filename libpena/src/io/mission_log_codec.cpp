@@ -14,6 +14,7 @@ namespace {
 
 constexpr double kMaxRangeLimitM = 1.0e6;  // keeps millimetre deltas within sint32
 constexpr double kMinRangeLimitM = 0.01;
+constexpr double kMaxSweepS = 1.0;  // a scan that takes longer is not one scan
 
 template <class... Ts>
 struct Overloaded : Ts... {
@@ -28,7 +29,7 @@ std::string Number(double value) {
 
 bool SameGeometry(const sensors::LaserGeometry& a, const sensors::LaserGeometry& b) {
   return a.angle_min_rad == b.angle_min_rad && a.angle_increment_rad == b.angle_increment_rad &&
-         a.max_range_m == b.max_range_m;
+         a.max_range_m == b.max_range_m && a.sweep_s == b.sweep_s;
 }
 
 // Strings in a proto3 message must be UTF-8 or the reader's parse fails.
@@ -68,10 +69,11 @@ void ToProto(const sensors::LaserGeometry& laser, log::LaserGeometry* out) {
   out->set_angle_min_rad(laser.angle_min_rad);
   out->set_angle_increment_rad(laser.angle_increment_rad);
   out->set_max_range_m(laser.max_range_m);
+  out->set_sweep_s(laser.sweep_s);
 }
 
 sensors::LaserGeometry FromProto(const log::LaserGeometry& laser) {
-  return {laser.angle_min_rad(), laser.angle_increment_rad(), laser.max_range_m()};
+  return {laser.angle_min_rad(), laser.angle_increment_rad(), laser.max_range_m(), laser.sweep_s()};
 }
 
 // A return rounded to millimetres, kept at >= 1 mm and below max range so that decoding gives the
@@ -135,6 +137,10 @@ std::string CheckGeometry(const sensors::LaserGeometry& laser, const std::string
   if (!(laser.max_range_m >= kMinRangeLimitM && laser.max_range_m <= kMaxRangeLimitM)) {
     return name + ".max_range_m must be in [" + Number(kMinRangeLimitM) + ", " +
            Number(kMaxRangeLimitM) + "] m, got " + Number(laser.max_range_m);
+  }
+  if (!(laser.sweep_s >= 0.0 && laser.sweep_s <= kMaxSweepS)) {
+    return name + ".sweep_s must be in [0, " + Number(kMaxSweepS) + "] s, got " +
+           Number(laser.sweep_s);
   }
   return {};
 }

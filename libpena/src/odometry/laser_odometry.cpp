@@ -38,8 +38,10 @@ LaserOdometryOptions ForEntity(LaserOdometryOptions options, sensors::EntityKind
   return options;
 }
 
-scan_matching::Points2 UsablePoints(const sensors::LaserScan& scan, const LaserOdometryOptions& o) {
-  scan_matching::Points2 points = scan_matching::ScanToPoints(scan, o.min_range_m);
+scan_matching::Points2 UsablePoints(const sensors::LaserScan& scan, const LaserOdometryOptions& o,
+                                    double rotation_rate_rad_s) {
+  scan_matching::Points2 points =
+      scan_matching::ScanToPointsAtMidSweep(scan, o.min_range_m, rotation_rate_rad_s);
   std::erase_if(points, [&](const Eigen::Vector2d& p) { return p.norm() > o.max_range_m; });
   return points;
 }
@@ -89,7 +91,9 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   out.world_from_prior = Predict(scan);
   match_weak_direction.reset();
   poor_timing = timing.Add(scan.stamp_s);
-  scan_matching::Points2 points = UsablePoints(scan, options);
+  const double sweep_rate_rad_s = SweepRotationRate(scan, out);
+  counts.deskewed += sweep_rate_rad_s != 0.0 ? 1 : 0;
+  scan_matching::Points2 points = UsablePoints(scan, options, sweep_rate_rad_s);
   if (drop_walker_fixed) points = DropWalkerFixed(std::move(points));
   if (drop_seen_through) {
     const std::vector<bool> marked = seen_through.Find(points, out.world_from_prior);
@@ -131,6 +135,18 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   frozen_odometry.Estimated(estimate);
   if (motion.last_pose()) pace_check.Record(*motion.last_pose(), estimate);
   return out;
+}
+
+double LaserOdometry::Impl::SweepRotationRate(const sensors::LaserScan& scan,
+                                              const OdometryEstimate& out) const {
+  if (!options.deskew_scans || scan.geometry.sweep_s == 0.0 || poor_timing ||
+      !previous_scan_stamp_s) {
+    return 0.0;
+  }
+  const double interval_s = scan.stamp_s - *previous_scan_stamp_s;
+  if (interval_s < options.deskew_min_interval_s || interval_s <= 0.0) return 0.0;
+  return geometry::NormalizeAngle(out.world_from_prior.theta_rad - previous_estimate.theta_rad) /
+         interval_s;
 }
 
 geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {

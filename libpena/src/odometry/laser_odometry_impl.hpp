@@ -155,6 +155,9 @@ struct LaserOdometry::Impl {
   // of the weighted mean of their errors however those are correlated.)
   Eigen::Matrix3d ReferenceCovariance(const geometry::Pose2& world_from_body) const;
   geometry::Pose2 Predict(const sensors::LaserScan& scan);
+  // The turn rate that moves a scan to mid-sweep (LaserOdometryOptions::deskew_scans): the prior's
+  // rotation since the previous scan over the interval, or 0 where it does not apply.
+  double SweepRotationRate(const sensors::LaserScan& scan, const OdometryEstimate& out) const;
   // drop_walker_fixed_points: `points` without the returns that move with the body.
   scan_matching::Points2 DropWalkerFixed(scan_matching::Points2 points);
   // keyframe_absorbs_stride_jumps: moves the keyframe's (and a held candidate's) motion pose.

@@ -20,6 +20,8 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
   Require(o.min_score > 0.0 && o.min_score < 1.0, "min_score", "in (0, 1)", o.min_score);
   Require(o.min_range_m >= 0.0, "min_range_m", ">= 0 m", o.min_range_m);
   Require(o.max_range_m > o.min_range_m, "max_range_m", "> min_range_m (m)", o.max_range_m);
+  Require(o.deskew_min_interval_s >= 0.0 && std::isfinite(o.deskew_min_interval_s),
+          "deskew_min_interval_s", ">= 0 s and finite", o.deskew_min_interval_s);
   Require(o.min_match_points >= 3, "min_match_points", ">= 3 points", o.min_match_points);
   Require(o.local_map_keyframes >= 1, "local_map_keyframes", ">= 1", o.local_map_keyframes);
   Require(o.local_map_pool_keyframes >= LaserOdometryOptions::kAutoPoolKeyframes,

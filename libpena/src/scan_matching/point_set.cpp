@@ -16,6 +16,28 @@ Points2 ScanToPoints(const sensors::LaserScan& scan, double min_range_m) {
   return points;
 }
 
+Points2 ScanToPointsAtMidSweep(const sensors::LaserScan& scan, double min_range_m,
+                               double rotation_rate_rad_s) {
+  const std::size_t beams = scan.ranges_m.size();
+  if (beams < 2 || scan.geometry.sweep_s == 0.0 || rotation_rate_rad_s == 0.0) {
+    return ScanToPoints(scan, min_range_m);
+  }
+  // Beam i is taken at (i / (beams - 1) - 1/2) * sweep_s from mid-sweep; by then the laser frame
+  // has turned by rate * that, so its return lies that much further round in the mid-sweep frame.
+  const double turn_per_beam_rad =
+      rotation_rate_rad_s * scan.geometry.sweep_s / static_cast<double>(beams - 1);
+  const double middle = 0.5 * static_cast<double>(beams - 1);
+  Points2 points;
+  points.reserve(beams);
+  for (std::size_t i = 0; i < beams; ++i) {
+    if (!scan.IsReturn(i) || scan.ranges_m[i] < min_range_m) continue;
+    const double angle = scan.BeamAngle(i) + turn_per_beam_rad * (static_cast<double>(i) - middle);
+    const double range = scan.ranges_m[i];
+    points.emplace_back(range * std::cos(angle), range * std::sin(angle));
+  }
+  return points;
+}
+
 Points2 TransformPoints(const geometry::Pose2& a_from_b, const Points2& points_b) {
   Points2 points_a;
   points_a.reserve(points_b.size());

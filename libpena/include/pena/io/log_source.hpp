@@ -23,6 +23,10 @@ struct ReadOptions {
   // CARMEN FLASER lines with 180 beams: true spreads them over 180 deg (180/179 deg steps),
   // false uses 1 deg steps from -90 deg. docs/evaluation.md shows 1 deg fits.
   bool carmen_180_beams_span_180_deg = false;
+  // CARMEN lines do not state how long a scan takes (LaserGeometry::sweep_s). The Freiburg and
+  // radish logs come from SICK LMS 2xx lasers, whose mirror turns at 75 Hz: 1/150 s for the
+  // 180 deg field. 0: every beam at the stamp. docs/odometry.md, "Scan deskew".
+  double carmen_sweep_s = 1.0 / 150.0;
 };
 
 // What a log says about itself.

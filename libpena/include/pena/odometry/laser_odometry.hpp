@@ -39,6 +39,14 @@ struct LaserOdometryOptions {
   double min_score = 0.4;          // eq. 2 score below which a match has failed
   double min_range_m = 0.1;        // closer returns are the carrier's own body
   double max_range_m = 40.0;       // farther returns are too sparse to match on
+  // Scans that take time (LaserGeometry::sweep_s > 0: the CARMEN logs' SICK lasers) are turned
+  // to mid-sweep by the prior's rotation rate since the previous scan before they are matched or
+  // kept (scan_matching::ScanToPointsAtMidSweep). A robot wiggling at 60 deg/s turns 0.4 deg
+  // during one sweep; uncorrected, that was mit-csail's heading drift of 3-7 deg over its loop
+  // (docs/odometry.md, "Scan deskew"). Not when the scans are closer than deskew_min_interval_s
+  // or arrive in bursts (their stamps are then delivery times and the rate is not the turn's).
+  bool deskew_scans = true;
+  double deskew_min_interval_s = 0.05;
   // Fewer usable points than this: no match, the prior is kept (kNoPoints). A laser going blind
   // (smoke in the office scenario) gives scans of 10-20 points first, and a wide search on so few
   // finds a high-scoring wrong heading (office seed 4: 18 deg off, kept for the rest of the run).
@@ -315,6 +323,7 @@ struct OdometryCounts {
   long pace_held = 0;        // matches that kept the prior along the walk (pace_check_*)
   long walker_fixed_dropped = 0;  // returns dropped as moving with the body (drop_walker_fixed_points)
   long seen_through_dropped = 0;  // returns dropped where an earlier scan saw through (drop_seen_through_points)
+  long deskewed = 0;         // scans turned to mid-sweep (deskew_scans; swept lasers only)
   long records_ignored = 0;  // out of order or not usable (see dead reckoning counts too)
 };
 

@@ -16,6 +16,10 @@ struct LaserGeometry {
   double angle_min_rad = 0.0;
   double angle_increment_rad = 0.0;
   double max_range_m = 0.0;  // ranges at or beyond this are no-returns
+  // Time from the first beam to the last; beams are taken in index order, evenly in time. 0: all
+  // beams at once (the simulator). A SICK LMS 2xx turns its mirror at 75 Hz, so a 180 deg field
+  // takes 1/150 s, while the platform may turn by a degree (docs/odometry.md, "Scan deskew").
+  double sweep_s = 0.0;
 };
 
 // One sweep. A beam that saw nothing holds kNoReturn (+infinity); readers map a format's own
