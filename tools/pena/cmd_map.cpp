@@ -262,12 +262,7 @@ void AddMapCommand(CLI::App& app) {
                    "CARMEN maximum range, metres: ranges at or above it are no-returns")
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
-  command
-      ->add_option("--carmen-sweep", args->read.carmen_sweep_s,
-                   "CARMEN scans: seconds from the first beam to the last (SICK LMS 2xx: 1/150); "
-                   "0: all beams at the stamp")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
+  AddCarmenSweepOption(*command, args->read);
   command->add_flag("--online", args->online,
                     "Build the line map as an entity does: a 20 m local grid moving with it, "
                     "extracted at each recentre and merged (the paper's online mode)");

@@ -343,12 +343,7 @@ void AddOdometryCommand(CLI::App& app) {
                    "CARMEN maximum range, metres: ranges at or above it are no-returns")
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
-  command
-      ->add_option("--carmen-sweep", args->read.carmen_sweep_s,
-                   "CARMEN scans: seconds from the first beam to the last (SICK LMS 2xx: 1/150); "
-                   "0: all beams at the stamp")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
+  AddCarmenSweepOption(*command, args->read);
   command->add_option("--start", args->start,
                       "Start pose X,Y,THETA_DEG (m, m, deg); default: see docs/odometry.md");
   command->add_option("--set", args->settings,
@@ -356,6 +351,15 @@ void AddOdometryCommand(CLI::App& app) {
                       "docs/odometry.md); repeatable");
   command->add_flag("--quiet", args->quiet, "No progress line on stderr");
   command->callback([args] { RunOdometry(*args); });
+}
+
+void AddCarmenSweepOption(CLI::App& command, io::ReadOptions& read) {
+  command
+      .add_option("--carmen-sweep", read.carmen_sweep_s,
+                  "CARMEN scans: seconds from the first beam to the last (SICK LMS 2xx: 1/150); "
+                  "0: all beams at the stamp")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
 }
 
 }  // namespace pena::cli

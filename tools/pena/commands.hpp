@@ -3,7 +3,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include "pena/io/log_source.hpp"
+
 namespace pena::cli {
+
+// --carmen-sweep, for the tools that run the odometry chain (docs/io-formats.md, "Sweep time").
+void AddCarmenSweepOption(CLI::App& command, io::ReadOptions& read);
 
 void AddInfoCommand(CLI::App& app);      // pena info FILE
 void AddExportCommand(CLI::App& app);    // pena export --log LOG --carmen|--csm OUT
