@@ -116,8 +116,8 @@ sensors::WheelOdometry ParseOdom(const Fields& fields) {
 
 // ROBOTLASER1 and RAWLASERn share the head: they state their own geometry and maximum range.
 // `tail` is the number of fields after the remissions.
-sensors::LaserScan ParseStatedLaser(const Fields& fields, std::size_t tail, const ReadOptions& options,
-                                    std::size_t* tail_start) {
+sensors::LaserScan ParseStatedLaser(const Fields& fields, std::size_t tail,
+                                    const ReadOptions& options, std::size_t* tail_start) {
   if (fields.size() < kLaserHeaderFields) Fail("laser line too short for its header");
   for (std::size_t i = 1; i < 8; ++i) Number(fields, i, "laser header");
   sensors::LaserScan scan;
