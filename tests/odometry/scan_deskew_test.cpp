@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -69,7 +70,7 @@ double HeadingRmsDeg(const sim::EntityRecording& robot, const std::vector<Odomet
                                               robot.truth[i].world_from_body.theta_rad);
     sum += e * e;
   }
-  return std::sqrt(sum / static_cast<double>(run.size())) * 180.0 / 3.141592653589793;
+  return std::sqrt(sum / static_cast<double>(run.size())) * 180.0 / std::numbers::pi;
 }
 
 TEST(ScanDeskew, TurnsSweptScansToMidSweepAndKeepsTheHeading) {

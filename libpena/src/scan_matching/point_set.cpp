@@ -5,28 +5,19 @@
 namespace pena::scan_matching {
 
 Points2 ScanToPoints(const sensors::LaserScan& scan, double min_range_m) {
-  Points2 points;
-  points.reserve(scan.ranges_m.size());
-  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
-    if (!scan.IsReturn(i) || scan.ranges_m[i] < min_range_m) continue;
-    const double angle = scan.BeamAngle(i);
-    const double range = scan.ranges_m[i];
-    points.emplace_back(range * std::cos(angle), range * std::sin(angle));
-  }
-  return points;
+  return ScanToPointsAtMidSweep(scan, min_range_m, 0.0);
 }
 
 Points2 ScanToPointsAtMidSweep(const sensors::LaserScan& scan, double min_range_m,
                                double rotation_rate_rad_s) {
   const std::size_t beams = scan.ranges_m.size();
-  if (beams < 2 || scan.geometry.sweep_s == 0.0 || rotation_rate_rad_s == 0.0) {
-    return ScanToPoints(scan, min_range_m);
-  }
   // Beam i is taken at (i / (beams - 1) - 1/2) * sweep_s from mid-sweep; by then the laser frame
   // has turned by rate * that, so its return lies that much further round in the mid-sweep frame.
+  // No turn (or no sweep) adds exactly 0 to every beam's angle.
   const double turn_per_beam_rad =
-      rotation_rate_rad_s * scan.geometry.sweep_s / static_cast<double>(beams - 1);
-  const double middle = 0.5 * static_cast<double>(beams - 1);
+      beams < 2 ? 0.0
+                : rotation_rate_rad_s * scan.geometry.sweep_s / static_cast<double>(beams - 1);
+  const double middle = beams < 2 ? 0.0 : 0.5 * static_cast<double>(beams - 1);
   Points2 points;
   points.reserve(beams);
   for (std::size_t i = 0; i < beams; ++i) {
