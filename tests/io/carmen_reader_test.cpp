@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "io_test_util.hpp"
 #include "pena/io/carmen.hpp"
@@ -92,6 +93,33 @@ TEST(CarmenReader, ReadsOdomAsWheelOdometry) {
   EXPECT_DOUBLE_EQ(odometry.odom_pose.theta_rad, -1.5);
   EXPECT_DOUBLE_EQ(odometry.forward_velocity_m_s, 0.3);
   EXPECT_DOUBLE_EQ(odometry.yaw_rate_rad_s, -0.1);
+}
+
+// A SICK LMS 2xx measures 1 deg steps per mirror turn: a 0.5 deg scan is two turns interleaved,
+// a 0.25 deg scan four (docs/odometry.md, "Interlaced scans"); the option overrides that.
+TEST(CarmenReader, GivesScansFinerThanOneDegreeTheirInterlace) {
+  const auto path = WriteText("interlace.clf", FlaserLine(181, "1", "1") + FlaserLine(361, "2", "2") +
+                                                   FlaserLine(721, "3", "3"));
+  std::vector<int> found;
+  for (const auto& record : ReadAll(*OpenCarmenLog(path, {}))) {
+    found.push_back(std::get<LaserScan>(record).geometry.interlace);
+  }
+  EXPECT_EQ(found, (std::vector<int>{1, 2, 4}));
+  ReadOptions one;
+  one.carmen_interlace = 1;
+  for (const auto& record : ReadAll(*OpenCarmenLog(path, one))) {
+    EXPECT_EQ(std::get<LaserScan>(record).geometry.interlace, 1);
+  }
+  ReadOptions too_many;
+  too_many.carmen_interlace = 17;
+  try {
+    OpenCarmenLog(path, too_many);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("carmen_interlace must be in [0, 16]"),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 // CARMEN does not say how long a scan takes: the reader gives every laser message the sweep of

@@ -117,6 +117,7 @@ void ExpectSameScan(const sensors::LaserScan& expected, const sensors::LaserScan
   EXPECT_EQ(expected.geometry.angle_increment_rad, actual.geometry.angle_increment_rad);
   EXPECT_EQ(expected.geometry.max_range_m, actual.geometry.max_range_m);
   EXPECT_EQ(expected.geometry.sweep_s, actual.geometry.sweep_s);
+  EXPECT_EQ(expected.geometry.interlace, actual.geometry.interlace);
   ASSERT_EQ(expected.ranges_m.size(), actual.ranges_m.size());
   for (std::size_t i = 0; i < expected.ranges_m.size(); ++i) {
     ASSERT_EQ(expected.IsReturn(i), actual.IsReturn(i)) << "beam " << i;

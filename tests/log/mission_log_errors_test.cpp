@@ -200,6 +200,19 @@ TEST(MissionLogErrors, WriterRejectsUnusableGeometryNamingFieldAndUnit) {
   }
 }
 
+TEST(MissionLogErrors, WriterRejectsAnInterlaceOfNoSweepsNamingTheField) {
+  MissionLogHeader header = MakeHeader();
+  header.laser.interlace = 0;
+  try {
+    MissionLogWriter writer(TempPath("interlace.penalog"), header);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("header.laser.interlace must be in [1, 16], got 0"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(MissionLogErrors, WriterRejectsANegativeSweepNamingFieldAndUnit) {
   MissionLogHeader header = MakeHeader();
   header.laser.sweep_s = -0.01;

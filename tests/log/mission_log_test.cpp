@@ -75,18 +75,20 @@ TEST(MissionLog, HeaderWithoutLaserLetsEveryScanCarryItsGeometry) {
 }
 
 // A laser that takes time over its scan (docs/odometry.md, "Scan deskew"): the header's sweep and
-// a scan's own survive, and 0 (the simulator's instantaneous scans) stays 0.
-TEST(MissionLog, RoundTripsTheLasersSweepTime) {
+// interlace and a scan's own survive, and 0 (the simulator's instantaneous scans) stays 0.
+TEST(MissionLog, RoundTripsTheLasersSweepTimeAndInterlace) {
   const auto path = TempPath("sweep.penalog");
   MissionLogHeader header = MakeHeader();
   header.laser.sweep_s = 1.0 / 150.0;
+  header.laser.interlace = 2;
   const std::vector<sensors::SensorRecord> records = {
-      testing::MakeScan(1.0, header.laser), testing::MakeScan(2.0, {-1.5, 0.02, 10.0, 0.025}),
+      testing::MakeScan(1.0, header.laser), testing::MakeScan(2.0, {-1.5, 0.02, 10.0, 0.025, 4}),
       testing::MakeScan(3.0, {-1.5, 0.02, 10.0, 0.0})};
   testing::WriteLog(path, header, records);
 
   MissionLogReader reader(path);
   EXPECT_EQ(reader.header().laser.sweep_s, 1.0 / 150.0);
+  EXPECT_EQ(reader.header().laser.interlace, 2);
   const auto read = testing::ReadAll(reader);
   ASSERT_EQ(read.size(), 3u);
   for (std::size_t i = 0; i < read.size(); ++i) testing::ExpectSameRecord(records[i], read[i]);

@@ -19,15 +19,21 @@ constexpr double kSweepS = 0.05;
 constexpr double kRateRadS = 1.5;  // a robot spinning on the spot
 
 // The synthetic room scanned beam by beam while the laser turns at rate_rad_s: beam i is taken
-// (i / 360 - 1/2) * sweep_s after mid-sweep, when the laser points that much further round.
+// i / 360 * sweep_s plus (i mod interlace) mirror turns (2 sweep_s: the field is half a turn)
+// after the first beam, when the laser points that much further round than at the mean time.
 sensors::LaserScan SweptScan(const geometry::Pose2& world_from_laser_at_mid, double sweep_s,
-                             double rate_rad_s) {
+                             double rate_rad_s, int interlace = 1) {
   const std::vector<geometry::Segment2> walls = testing::SyntheticRoom();
   sensors::LaserScan scan;
-  scan.geometry = {-std::numbers::pi / 2, std::numbers::pi / (kBeams - 1), 30.0, sweep_s};
+  scan.geometry = {-std::numbers::pi / 2, std::numbers::pi / (kBeams - 1), 30.0, sweep_s, interlace};
+  const auto taken_s = [&](int i) {
+    return static_cast<double>(i) / (kBeams - 1) * sweep_s + (i % interlace) * 2.0 * sweep_s;
+  };
+  double mean_s = 0.0;
+  for (int i = 0; i < kBeams; ++i) mean_s += taken_s(i) / kBeams;
   const Eigen::Vector2d origin(world_from_laser_at_mid.x_m, world_from_laser_at_mid.y_m);
   for (int i = 0; i < kBeams; ++i) {
-    const double offset_s = (static_cast<double>(i) / (kBeams - 1) - 0.5) * sweep_s;
+    const double offset_s = taken_s(i) - mean_s;
     const double world_angle =
         world_from_laser_at_mid.theta_rad + rate_rad_s * offset_s + scan.BeamAngle(i);
     const Eigen::Vector2d direction(std::cos(world_angle), std::sin(world_angle));
@@ -74,11 +80,24 @@ TEST(MidSweepPoints, TheTurnsDirectionMatters) {
   EXPECT_GT(WorstWallDistanceM(ScanToPointsAtMidSweep(scan, 0.05, kRateRadS), kMid), 0.1);
 }
 
+// A SICK LMS 2xx at 0.5 deg takes its even beams in one mirror turn and its odd beams in the
+// next: neighbouring returns are a turn apart, and only the interlaced timing puts both on the walls.
+TEST(MidSweepPoints, InterlacedSweepsAreEachTurnedByTheirOwnTime) {
+  const sensors::LaserScan scan = SweptScan(kMid, kSweepS, kRateRadS, 2);
+  EXPECT_LT(WorstWallDistanceM(ScanToPointsAtMidSweep(scan, 0.05, kRateRadS), kMid), 1e-3);
+  sensors::LaserScan as_one_sweep = scan;
+  as_one_sweep.geometry.interlace = 1;
+  // The odd beams are 2 * 50 ms * 1.5 rad/s = 8.6 deg round from the even ones.
+  EXPECT_GT(WorstWallDistanceM(ScanToPointsAtMidSweep(as_one_sweep, 0.05, kRateRadS), kMid), 0.1);
+}
+
 TEST(MidSweepPoints, AnInstantaneousScanOrNoTurnIsLeftAsItIs) {
   const sensors::LaserScan instantaneous = SweptScan(kMid, 0.0, 0.0);
   EXPECT_EQ(ScanToPointsAtMidSweep(instantaneous, 0.05, kRateRadS), ScanToPoints(instantaneous, 0.05));
   const sensors::LaserScan swept = SweptScan(kMid, kSweepS, kRateRadS);
   EXPECT_EQ(ScanToPointsAtMidSweep(swept, 0.05, 0.0), ScanToPoints(swept, 0.05));
+  const sensors::LaserScan interlaced = SweptScan(kMid, kSweepS, kRateRadS, 2);
+  EXPECT_EQ(ScanToPointsAtMidSweep(interlaced, 0.05, 0.0), ScanToPoints(interlaced, 0.05));
 }
 
 }  // namespace

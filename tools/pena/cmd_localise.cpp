@@ -196,7 +196,7 @@ void AddLocaliseCommand(CLI::App& app) {
   command->add_option("--max-range", args->read.carmen_max_range_m, "CARMEN maximum range, metres")
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
-  AddCarmenSweepOption(*command, args->read);
+  AddCarmenSweepOptions(*command, args->read);
   command->add_flag("--quiet", args->quiet, "No progress line on stderr");
   command->add_option("--set", args->settings,
                       "NAME=VALUE: change a numeric plan-matching option (for sweeps; names in "

@@ -262,7 +262,7 @@ void AddMapCommand(CLI::App& app) {
                    "CARMEN maximum range, metres: ranges at or above it are no-returns")
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
-  AddCarmenSweepOption(*command, args->read);
+  AddCarmenSweepOptions(*command, args->read);
   command->add_flag("--online", args->online,
                     "Build the line map as an entity does: a 20 m local grid moving with it, "
                     "extracted at each recentre and merged (the paper's online mode)");

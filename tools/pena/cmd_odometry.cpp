@@ -343,7 +343,7 @@ void AddOdometryCommand(CLI::App& app) {
                    "CARMEN maximum range, metres: ranges at or above it are no-returns")
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
-  AddCarmenSweepOption(*command, args->read);
+  AddCarmenSweepOptions(*command, args->read);
   command->add_option("--start", args->start,
                       "Start pose X,Y,THETA_DEG (m, m, deg); default: see docs/odometry.md");
   command->add_option("--set", args->settings,
@@ -353,12 +353,18 @@ void AddOdometryCommand(CLI::App& app) {
   command->callback([args] { RunOdometry(*args); });
 }
 
-void AddCarmenSweepOption(CLI::App& command, io::ReadOptions& read) {
+void AddCarmenSweepOptions(CLI::App& command, io::ReadOptions& read) {
   command
       .add_option("--carmen-sweep", read.carmen_sweep_s,
                   "CARMEN scans: seconds from the first beam to the last (SICK LMS 2xx: 1/150); "
                   "0: all beams at the stamp")
       ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  command
+      .add_option("--carmen-interlace", read.carmen_interlace,
+                  "CARMEN scans: sweeps interleaved into one scan, a mirror turn apart; 0: from "
+                  "the beam spacing (SICK LMS 2xx: 2 at 0.5 deg, 4 at 0.25 deg)")
+      ->check(CLI::Range(0, 16))
       ->capture_default_str();
 }
 

@@ -7,8 +7,9 @@
 
 namespace pena::cli {
 
-// --carmen-sweep, for the tools that run the odometry chain (docs/io-formats.md, "Sweep time").
-void AddCarmenSweepOption(CLI::App& command, io::ReadOptions& read);
+// --carmen-sweep and --carmen-interlace, for the tools that run the odometry chain
+// (docs/io-formats.md, "Sweep time").
+void AddCarmenSweepOptions(CLI::App& command, io::ReadOptions& read);
 
 void AddInfoCommand(CLI::App& app);      // pena info FILE
 void AddExportCommand(CLI::App& app);    // pena export --log LOG --carmen|--csm OUT

@@ -1,5 +1,6 @@
 #include "carmen_line_parser.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -125,6 +126,7 @@ sensors::LaserScan ParseStatedLaser(const Fields& fields, std::size_t tail,
   scan.geometry.angle_increment_rad = Number(fields, 4, "angular_resolution");
   scan.geometry.max_range_m = Number(fields, 5, "maximum_range");
   scan.geometry.sweep_s = options.carmen_sweep_s;
+  scan.geometry.interlace = CarmenInterlace(scan.geometry.angle_increment_rad, options);
   if (scan.geometry.max_range_m <= 0.0) {
     Fail("maximum_range " + std::string(fields[5]) + " m must be > 0 m");
   }
@@ -178,7 +180,17 @@ sensors::LaserGeometry FlaserGeometry(std::size_t beam_count, const ReadOptions&
   const bool one_degree_steps = beam_count == 180 && !options.carmen_180_beams_span_180_deg;
   geometry.angle_increment_rad =
       one_degree_steps ? kOneDegree : std::numbers::pi / static_cast<double>(beam_count - 1);
+  geometry.interlace = CarmenInterlace(geometry.angle_increment_rad, options);
   return geometry;
+}
+
+int CarmenInterlace(double angle_increment_rad, const ReadOptions& options) {
+  if (options.carmen_interlace > 0) return options.carmen_interlace;
+  // A SICK LMS 2xx measures 1 deg steps per mirror turn; finer steps are turns interleaved.
+  constexpr double kOneDegree = std::numbers::pi / 180.0;
+  const double steps_per_degree = kOneDegree / std::abs(angle_increment_rad);
+  if (!(steps_per_degree > 1.5)) return 1;  // 1 deg or coarser (or no increment: one beam)
+  return static_cast<int>(std::min(std::round(steps_per_degree), 16.0));
 }
 
 std::optional<CarmenMessage> ParseCarmenLine(std::string_view line, const ReadOptions& options) {

@@ -30,5 +30,7 @@ std::optional<CarmenMessage> ParseCarmenLine(std::string_view line, const ReadOp
 
 // Beam geometry of an n-beam FLASER scan (FLASER does not state it; see docs/io-formats.md).
 sensors::LaserGeometry FlaserGeometry(std::size_t beam_count, const ReadOptions& options);
+// The sweeps interleaved in a CARMEN scan of this beam spacing (ReadOptions::carmen_interlace).
+int CarmenInterlace(double angle_increment_rad, const ReadOptions& options);
 
 }  // namespace pena::io::detail

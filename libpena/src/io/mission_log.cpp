@@ -28,7 +28,7 @@ namespace {
 using detail::FormatError;
 
 constexpr std::array<char, 8> kMagic = {'\x89', 'P', 'E', 'N', 'A', 'L', 'O', 'G'};
-constexpr std::uint16_t kMinorVersion = 1;  // 1: LaserGeometry.sweep_s
+constexpr std::uint16_t kMinorVersion = 2;  // 1: LaserGeometry.sweep_s; 2: .interlace
 constexpr std::uint64_t kMaxFrameBytes = 64u << 20;  // far above any real record; guards a bad size
 // A crashed recorder loses at most this much log time or data (sync points of the stream).
 constexpr double kFlushEveryS = 1.0;

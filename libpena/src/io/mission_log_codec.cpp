@@ -15,6 +15,7 @@ namespace {
 constexpr double kMaxRangeLimitM = 1.0e6;  // keeps millimetre deltas within sint32
 constexpr double kMinRangeLimitM = 0.01;
 constexpr double kMaxSweepS = 1.0;  // a scan that takes longer is not one scan
+constexpr int kMaxInterlace = 16;   // SICK lasers interleave at most 4 turns (0.25 deg)
 
 template <class... Ts>
 struct Overloaded : Ts... {
@@ -29,7 +30,8 @@ std::string Number(double value) {
 
 bool SameGeometry(const sensors::LaserGeometry& a, const sensors::LaserGeometry& b) {
   return a.angle_min_rad == b.angle_min_rad && a.angle_increment_rad == b.angle_increment_rad &&
-         a.max_range_m == b.max_range_m && a.sweep_s == b.sweep_s;
+         a.max_range_m == b.max_range_m && a.sweep_s == b.sweep_s &&
+         a.interlace == b.interlace;
 }
 
 // Strings in a proto3 message must be UTF-8 or the reader's parse fails.
@@ -70,10 +72,15 @@ void ToProto(const sensors::LaserGeometry& laser, log::LaserGeometry* out) {
   out->set_angle_increment_rad(laser.angle_increment_rad);
   out->set_max_range_m(laser.max_range_m);
   out->set_sweep_s(laser.sweep_s);
+  out->set_interlace(static_cast<std::uint32_t>(laser.interlace));
 }
 
 sensors::LaserGeometry FromProto(const log::LaserGeometry& laser) {
-  return {laser.angle_min_rad(), laser.angle_increment_rad(), laser.max_range_m(), laser.sweep_s()};
+  // Logs before minor version 2 have no interlace field: 0, a single sweep. A value too large
+  // for int is clamped so that CheckGeometry names it.
+  const std::uint32_t interlace = laser.interlace();
+  return {laser.angle_min_rad(), laser.angle_increment_rad(), laser.max_range_m(), laser.sweep_s(),
+          interlace == 0 ? 1 : static_cast<int>(std::min<std::uint32_t>(interlace, 1u << 20))};
 }
 
 // A return rounded to millimetres, kept at >= 1 mm and below max range so that decoding gives the
@@ -141,6 +148,10 @@ std::string CheckGeometry(const sensors::LaserGeometry& laser, const std::string
   if (!(laser.sweep_s >= 0.0 && laser.sweep_s <= kMaxSweepS)) {
     return name + ".sweep_s must be in [0, " + Number(kMaxSweepS) + "] s, got " +
            Number(laser.sweep_s);
+  }
+  if (!(laser.interlace >= 1 && laser.interlace <= kMaxInterlace)) {
+    return name + ".interlace must be in [1, " + std::to_string(kMaxInterlace) + "], got " +
+           std::to_string(laser.interlace);
   }
   return {};
 }

@@ -1,6 +1,8 @@
 #include "pena/scan_matching/point_set.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace pena::scan_matching {
 
@@ -11,18 +13,30 @@ Points2 ScanToPoints(const sensors::LaserScan& scan, double min_range_m) {
 Points2 ScanToPointsAtMidSweep(const sensors::LaserScan& scan, double min_range_m,
                                double rotation_rate_rad_s) {
   const std::size_t beams = scan.ranges_m.size();
-  // Beam i is taken at (i / (beams - 1) - 1/2) * sweep_s from mid-sweep; by then the laser frame
-  // has turned by rate * that, so its return lies that much further round in the mid-sweep frame.
-  // No turn (or no sweep) adds exactly 0 to every beam's angle.
+  // Beam i is taken at i / (beams - 1) * sweep_s plus (i mod interlace) mirror turns after the
+  // first beam; by then the laser frame has turned by rate * that, so its return lies that much
+  // further round in the frame of the mean beam time. No turn (or no sweep) adds exactly 0.
   const double turn_per_beam_rad =
       beams < 2 ? 0.0
                 : rotation_rate_rad_s * scan.geometry.sweep_s / static_cast<double>(beams - 1);
   const double middle = beams < 2 ? 0.0 : 0.5 * static_cast<double>(beams - 1);
+  const auto interlace = static_cast<std::size_t>(std::max(scan.geometry.interlace, 1));
+  const double field_rad = std::abs(scan.geometry.angle_increment_rad) * static_cast<double>(beams - 1);
+  const double turn_per_mirror_turn_rad =
+      interlace < 2 || beams < 2 || !(field_rad > 0.0)
+          ? 0.0
+          : rotation_rate_rad_s * scan.geometry.sweep_s * 2.0 * std::numbers::pi / field_rad;
+  // The mean of i mod interlace over the beams, so that the turns add nothing on average.
+  double mean_sweep = 0.0;
+  for (std::size_t i = 0; i < beams; ++i) mean_sweep += static_cast<double>(i % interlace);
+  if (beams > 0) mean_sweep /= static_cast<double>(beams);
   Points2 points;
   points.reserve(beams);
   for (std::size_t i = 0; i < beams; ++i) {
     if (!scan.IsReturn(i) || scan.ranges_m[i] < min_range_m) continue;
-    const double angle = scan.BeamAngle(i) + turn_per_beam_rad * (static_cast<double>(i) - middle);
+    const double angle = scan.BeamAngle(i) +
+                         turn_per_beam_rad * (static_cast<double>(i) - middle) +
+                         turn_per_mirror_turn_rad * (static_cast<double>(i % interlace) - mean_sweep);
     const double range = scan.ranges_m[i];
     points.emplace_back(range * std::cos(angle), range * std::sin(angle));
   }

@@ -27,6 +27,9 @@ struct ReadOptions {
   // radish logs come from SICK LMS 2xx lasers, whose mirror turns at 75 Hz: 1/150 s for the
   // 180 deg field. 0: every beam at the stamp. docs/odometry.md, "Scan deskew".
   double carmen_sweep_s = 1.0 / 150.0;
+  // Sweeps interleaved into one CARMEN scan (LaserGeometry::interlace). 0: from the beam spacing,
+  // as a SICK LMS 2xx takes finer steps than 1 deg: 0.5 deg in 2 turns, 0.25 deg in 4.
+  int carmen_interlace = 0;
 };
 
 // What a log says about itself.

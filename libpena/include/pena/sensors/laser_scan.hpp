@@ -20,6 +20,11 @@ struct LaserGeometry {
   // beams at once (the simulator). A SICK LMS 2xx turns its mirror at 75 Hz, so a 180 deg field
   // takes 1/150 s, while the platform may turn by a degree (docs/odometry.md, "Scan deskew").
   double sweep_s = 0.0;
+  // Sweeps interleaved into one scan, each over the whole field, one mirror turn apart: beam i
+  // belongs to sweep i mod interlace. A SICK LMS 2xx at 0.5 deg (361 beams) takes its even beams
+  // in one turn and its odd beams in the next, 1/75 s later (docs/odometry.md, "Interlaced
+  // scans"). The turn takes sweep_s * 2 pi / field, the field being the beams' span.
+  int interlace = 1;
 };
 
 // One sweep. A beam that saw nothing holds kNoReturn (+infinity); readers map a format's own
