@@ -25,6 +25,22 @@ TEST(BurstTiming, ScansDeliveredInBurstsMakeTheTimingPoor) {
   EXPECT_NEAR(timing.fraction(), 1.0 / 3.0, 0.01);
 }
 
+// The laser's period where the stamps are delivery times: the mean over all scans, also with a
+// window and with the check off.
+TEST(BurstTiming, MeanIntervalIsOverAllScansSoFar) {
+  for (const int window_scans : {0, 10}) {
+    for (const double gap_s : {0.02, 0.0}) {
+      BurstTiming timing(gap_s, 0.05, window_scans);
+      EXPECT_EQ(timing.mean_interval_s(), 0.0);
+      double stamp_s = 100.0;
+      timing.Add(stamp_s);
+      EXPECT_EQ(timing.mean_interval_s(), 0.0);
+      for (int i = 0; i < 300; ++i) timing.Add(stamp_s += (i % 3 == 2) ? 0.005 : 0.2);
+      EXPECT_NEAR(timing.mean_interval_s(), (0.2 + 0.2 + 0.005) / 3.0, 1e-9);
+    }
+  }
+}
+
 TEST(BurstTiming, AWindowForgetsOldBursts) {
   BurstTiming timing(0.02, 0.05, 50);
   double stamp_s = 100.0;

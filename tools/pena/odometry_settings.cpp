@@ -100,6 +100,7 @@ void ApplyOdometrySettings(const std::vector<std::string>& settings,
   SettingTargets targets;
   targets.doubles = SettableOptions(o);
   targets.ints = {{"local_map_keyframes", &o.local_map_keyframes},
+                  {"deskew_match_passes", &o.deskew_match_passes},
                   {"local_map_pool_keyframes", &o.local_map_pool_keyframes},
                   {"local_map_place_fill_frozen_scans", &o.local_map_place_fill_frozen_scans},
                   {"local_map_recent_keyframes", &o.local_map_recent_keyframes},
@@ -123,7 +124,8 @@ void ApplyOdometrySettings(const std::vector<std::string>& settings,
       {"keyframe_stride_jump_share", &o.keyframe_stride_jump_share},
       {"keyframe_stride_jump_across_weak", &o.keyframe_stride_jump_across_weak},
       {"local_map_place_fill_recent", &o.local_map_place_fill_recent},
-      {"deskew_scans", &o.deskew_scans}};
+      {"deskew_scans", &o.deskew_scans},
+      {"deskew_bursty_scans", &o.deskew_bursty_scans}};
   for (const std::string& text : settings) {
     const Setting setting = ParseSetting(text);
     if (!ApplySetting(targets, setting)) {

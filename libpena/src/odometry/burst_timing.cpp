@@ -6,7 +6,12 @@ BurstTiming::BurstTiming(double burst_gap_s, double max_fraction, int window_sca
     : burst_gap_s_(burst_gap_s), max_fraction_(max_fraction), window_scans_(window_scans) {}
 
 bool BurstTiming::Add(double stamp_s) {
-  if (burst_gap_s_ <= 0.0) return false;
+  if (!first_stamp_s_) first_stamp_s_ = stamp_s;
+  ++all_scans_;
+  if (burst_gap_s_ <= 0.0) {
+    last_stamp_s_ = stamp_s;
+    return false;
+  }
   const bool in_burst = last_stamp_s_ && stamp_s - *last_stamp_s_ < burst_gap_s_;
   last_stamp_s_ = stamp_s;
   ++scans_;
@@ -24,6 +29,11 @@ bool BurstTiming::Add(double stamp_s) {
 
 double BurstTiming::fraction() const {
   return scans_ > 0 ? static_cast<double>(bursts_) / static_cast<double>(scans_) : 0.0;
+}
+
+double BurstTiming::mean_interval_s() const {
+  if (all_scans_ < 2) return 0.0;
+  return (*last_stamp_s_ - *first_stamp_s_) / static_cast<double>(all_scans_ - 1);
 }
 
 }  // namespace pena::odometry::internal

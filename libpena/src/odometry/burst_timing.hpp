@@ -21,12 +21,17 @@ class BurstTiming {
   bool Add(double stamp_s);
   // The fraction of scans in bursts over the window so far.
   double fraction() const;
+  // The mean interval between all scans recorded so far (0 before the second): the laser's
+  // period where the stamps themselves are delivery times.
+  double mean_interval_s() const;
 
  private:
   double burst_gap_s_;
   double max_fraction_;
   int window_scans_;
   std::optional<double> last_stamp_s_;
+  std::optional<double> first_stamp_s_;
+  long all_scans_ = 0;
   std::deque<bool> window_;  // newest last; only with window_scans > 0
   long scans_ = 0;
   long bursts_ = 0;

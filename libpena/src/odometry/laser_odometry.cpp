@@ -91,9 +91,7 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   out.world_from_prior = Predict(scan);
   match_weak_direction.reset();
   poor_timing = timing.Add(scan.stamp_s);
-  const double sweep_rate_rad_s = SweepRotationRate(scan, out);
-  counts.deskewed += sweep_rate_rad_s != 0.0 ? 1 : 0;
-  scan_matching::Points2 points = UsablePoints(scan, options, sweep_rate_rad_s);
+  scan_matching::Points2 points = MidSweepPoints(scan, out);
   if (drop_walker_fixed) points = DropWalkerFixed(std::move(points));
   if (drop_seen_through) {
     const std::vector<bool> marked = seen_through.Find(points, out.world_from_prior);
@@ -137,16 +135,56 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   return out;
 }
 
-double LaserOdometry::Impl::SweepRotationRate(const sensors::LaserScan& scan,
-                                              const OdometryEstimate& out) const {
-  if (!options.deskew_scans || scan.geometry.sweep_s == 0.0 || poor_timing ||
-      !previous_scan_stamp_s) {
-    return 0.0;
+std::optional<double> LaserOdometry::Impl::DeskewInterval(const sensors::LaserScan& scan) const {
+  if (!options.deskew_scans || scan.geometry.sweep_s == 0.0 || !previous_scan_stamp_s) {
+    return std::nullopt;
   }
-  const double interval_s = scan.stamp_s - *previous_scan_stamp_s;
-  if (interval_s < options.deskew_min_interval_s || interval_s <= 0.0) return 0.0;
-  return geometry::NormalizeAngle(out.world_from_prior.theta_rad - previous_estimate.theta_rad) /
-         interval_s;
+  double interval_s = scan.stamp_s - *previous_scan_stamp_s;
+  if (poor_timing) {
+    if (!options.deskew_bursty_scans) return std::nullopt;
+    interval_s = timing.mean_interval_s();
+  }
+  if (interval_s < options.deskew_min_interval_s || interval_s <= 0.0) return std::nullopt;
+  return interval_s;
+}
+
+scan_matching::Points2 LaserOdometry::Impl::MidSweepPoints(const sensors::LaserScan& scan,
+                                                           const OdometryEstimate& out) {
+  const std::optional<double> interval_s = DeskewInterval(scan);
+  if (!interval_s) return UsablePoints(scan, options, 0.0);
+  ++counts.deskewed;
+  const auto turn_rate_rad_s = [&](const geometry::Pose2& world_from_scan) {
+    return geometry::NormalizeAngle(world_from_scan.theta_rad - previous_estimate.theta_rad) /
+           *interval_s;
+  };
+  scan_matching::Points2 points =
+      UsablePoints(scan, options, turn_rate_rad_s(out.world_from_prior));
+  // The first pass searches from the prior as the match will; later ones only move the pose
+  // found by as much as the paper's window (the turn rate changes by a fraction of a degree).
+  std::optional<geometry::Pose2> matched;
+  for (int pass = 0; pass < options.deskew_match_passes; ++pass) {
+    matched = MatchForDeskew(points, matched ? *matched : out.world_from_prior, !matched);
+    if (!matched) break;
+    points = UsablePoints(scan, options, turn_rate_rad_s(*matched));
+  }
+  return points;
+}
+
+std::optional<geometry::Pose2> LaserOdometry::Impl::MatchForDeskew(
+    const scan_matching::Points2& points, const geometry::Pose2& around,
+    bool current_window) const {
+  if (!matcher || local_map.empty() ||
+      static_cast<int>(points.size()) < options.min_match_points) {
+    return std::nullopt;
+  }
+  // Branch and bound finds the exhaustive search's pose, faster in grown windows.
+  const bool base = !current_window || window.IsBase();
+  const scan_matching::SearchWindow searched = base ? options.window : window.Current();
+  const scan_matching::MatchResult result =
+      base ? matcher->MatchExhaustive(points, around, searched)
+           : matcher->MatchBranchAndBound(points, around, searched);
+  if (result.score < options.min_score) return std::nullopt;
+  return result.reference_from_scan;
 }
 
 geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {

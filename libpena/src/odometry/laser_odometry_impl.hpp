@@ -155,9 +155,17 @@ struct LaserOdometry::Impl {
   // of the weighted mean of their errors however those are correlated.)
   Eigen::Matrix3d ReferenceCovariance(const geometry::Pose2& world_from_body) const;
   geometry::Pose2 Predict(const sensors::LaserScan& scan);
-  // The turn rate that moves a scan to mid-sweep (LaserOdometryOptions::deskew_scans): the prior's
-  // rotation since the previous scan over the interval, or 0 where it does not apply.
-  double SweepRotationRate(const sensors::LaserScan& scan, const OdometryEstimate& out) const;
+  // The time between this scan and the previous one that deskew divides a turn by (the mean
+  // interval where the stamps are delivery times), or nullopt where deskew does not apply.
+  std::optional<double> DeskewInterval(const sensors::LaserScan& scan) const;
+  // The scan's usable points, turned to mid-sweep where deskew applies: by the turn since the
+  // previous scan of the prior, then of each match of the points (deskew_match_passes).
+  scan_matching::Points2 MidSweepPoints(const sensors::LaserScan& scan, const OdometryEstimate& out);
+  // The best match of `points` around `around` in the current window (current_window) or the
+  // base one, or nullopt without a reference or a match scoring min_score.
+  std::optional<geometry::Pose2> MatchForDeskew(const scan_matching::Points2& points,
+                                                const geometry::Pose2& around,
+                                                bool current_window) const;
   // drop_walker_fixed_points: `points` without the returns that move with the body.
   scan_matching::Points2 DropWalkerFixed(scan_matching::Points2 points);
   // keyframe_absorbs_stride_jumps: moves the keyframe's (and a held candidate's) motion pose.

@@ -22,6 +22,8 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
   Require(o.max_range_m > o.min_range_m, "max_range_m", "> min_range_m (m)", o.max_range_m);
   Require(o.deskew_min_interval_s >= 0.0 && std::isfinite(o.deskew_min_interval_s),
           "deskew_min_interval_s", ">= 0 s and finite", o.deskew_min_interval_s);
+  Require(o.deskew_match_passes >= 0 && o.deskew_match_passes <= 10, "deskew_match_passes",
+          "in [0, 10]", o.deskew_match_passes);
   Require(o.min_match_points >= 3, "min_match_points", ">= 3 points", o.min_match_points);
   Require(o.local_map_keyframes >= 1, "local_map_keyframes", ">= 1", o.local_map_keyframes);
   Require(o.local_map_pool_keyframes >= LaserOdometryOptions::kAutoPoolKeyframes,

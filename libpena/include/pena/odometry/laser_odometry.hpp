@@ -40,13 +40,24 @@ struct LaserOdometryOptions {
   double min_range_m = 0.1;        // closer returns are the carrier's own body
   double max_range_m = 40.0;       // farther returns are too sparse to match on
   // Scans that take time (LaserGeometry::sweep_s > 0: the CARMEN logs' SICK lasers) are turned
-  // to mid-sweep by the prior's rotation rate since the previous scan before they are matched or
-  // kept (scan_matching::ScanToPointsAtMidSweep). A robot wiggling at 60 deg/s turns 0.4 deg
+  // to mid-sweep by the rotation rate since the previous scan (the prior's, then the matched
+  // turn's: deskew_match_passes) before they are matched or kept
+  // (scan_matching::ScanToPointsAtMidSweep). A robot wiggling at 60 deg/s turns 0.4 deg
   // during one sweep; uncorrected, that was mit-csail's heading drift of 3-7 deg over its loop
-  // (docs/odometry.md, "Scan deskew"). Not when the scans are closer than deskew_min_interval_s
-  // or arrive in bursts (their stamps are then delivery times and the rate is not the turn's).
+  // (docs/odometry.md, "Scan deskew"). Not when the scans are closer than deskew_min_interval_s.
   bool deskew_scans = true;
   double deskew_min_interval_s = 0.05;
+  // Scans that arrive in bursts (stamps that are delivery times: intel) are deskewed too, with
+  // the mean interval between scans as the time the turn took; off, they are matched as taken
+  // at once. Intel's long relations lost 1.8 deg of heading that way (docs/odometry.md,
+  // "Deskew by the matched turn").
+  bool deskew_bursty_scans = true;
+  // The prior's rate is the motion sensor's, and a logged odometry may not be in step with the
+  // laser: mit-csail's odometry turns match the scans' turns best 0.1 s earlier (docs/odometry.md,
+  // "Deskew by the matched turn"). So the deskewed scan is matched this many times, and each
+  // match's turn since the previous scan gives the rate for the next deskew (0: the prior's).
+  // The first pass searches as the match will; later ones search the base window only.
+  int deskew_match_passes = 2;
   // Fewer usable points than this: no match, the prior is kept (kNoPoints). A laser going blind
   // (smoke in the office scenario) gives scans of 10-20 points first, and a wide search on so few
   // finds a high-scoring wrong heading (office seed 4: 18 deg off, kept for the rest of the run).
