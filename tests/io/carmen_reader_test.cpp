@@ -98,7 +98,8 @@ TEST(CarmenReader, ReadsOdomAsWheelOdometry) {
 // A SICK LMS 2xx measures 1 deg steps per mirror turn: a 0.5 deg scan is two turns interleaved,
 // a 0.25 deg scan four (docs/odometry.md, "Interlaced scans"); the option overrides that.
 TEST(CarmenReader, GivesScansFinerThanOneDegreeTheirInterlace) {
-  const auto path = WriteText("interlace.clf", FlaserLine(181, "1", "1") + FlaserLine(361, "2", "2") +
+  const auto path = WriteText("interlace.clf", FlaserLine(181, "1", "1") +
+                                                   FlaserLine(361, "2", "2") +
                                                    FlaserLine(721, "3", "3"));
   std::vector<int> found;
   for (const auto& record : ReadAll(*OpenCarmenLog(path, {}))) {

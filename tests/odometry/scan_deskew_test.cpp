@@ -92,7 +92,8 @@ TEST(ScanDeskew, TurnsSweptScansToMidSweepAndKeepsTheHeading) {
 
 // The robot's swept records delivered in pairs, as intel's logger did: every second scan is
 // stamped and recorded 1 ms before the next one, after the odometry that came in between.
-std::vector<sensors::SensorRecord> DeliveredInPairs(const std::vector<sensors::SensorRecord>& records) {
+std::vector<sensors::SensorRecord> DeliveredInPairs(
+    const std::vector<sensors::SensorRecord>& records) {
   std::vector<sensors::SensorRecord> out;
   std::optional<sensors::LaserScan> held;
   int scans = 0;

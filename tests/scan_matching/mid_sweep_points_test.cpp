@@ -25,7 +25,8 @@ sensors::LaserScan SweptScan(const geometry::Pose2& world_from_laser_at_mid, dou
                              double rate_rad_s, int interlace = 1) {
   const std::vector<geometry::Segment2> walls = testing::SyntheticRoom();
   sensors::LaserScan scan;
-  scan.geometry = {-std::numbers::pi / 2, std::numbers::pi / (kBeams - 1), 30.0, sweep_s, interlace};
+  scan.geometry = {-std::numbers::pi / 2, std::numbers::pi / (kBeams - 1), 30.0, sweep_s,
+                   interlace};
   const auto taken_s = [&](int i) {
     return static_cast<double>(i) / (kBeams - 1) * sweep_s + (i % interlace) * 2.0 * sweep_s;
   };
@@ -81,7 +82,8 @@ TEST(MidSweepPoints, TheTurnsDirectionMatters) {
 }
 
 // A SICK LMS 2xx at 0.5 deg takes its even beams in one mirror turn and its odd beams in the
-// next: neighbouring returns are a turn apart, and only the interlaced timing puts both on the walls.
+// next: neighbouring returns are a turn apart, and only the interlaced timing puts both on the
+// walls.
 TEST(MidSweepPoints, InterlacedSweepsAreEachTurnedByTheirOwnTime) {
   const sensors::LaserScan scan = SweptScan(kMid, kSweepS, kRateRadS, 2);
   EXPECT_LT(WorstWallDistanceM(ScanToPointsAtMidSweep(scan, 0.05, kRateRadS), kMid), 1e-3);

@@ -21,9 +21,11 @@ Points2 ScanToPointsAtMidSweep(const sensors::LaserScan& scan, double min_range_
                 : rotation_rate_rad_s * scan.geometry.sweep_s / static_cast<double>(beams - 1);
   const double middle = beams < 2 ? 0.0 : 0.5 * static_cast<double>(beams - 1);
   const auto interlace = static_cast<std::size_t>(std::max(scan.geometry.interlace, 1));
-  const double field_rad = std::abs(scan.geometry.angle_increment_rad) * static_cast<double>(beams - 1);
+  const double field_rad =
+      beams < 2 ? 0.0
+                : std::abs(scan.geometry.angle_increment_rad) * static_cast<double>(beams - 1);
   const double turn_per_mirror_turn_rad =
-      interlace < 2 || beams < 2 || !(field_rad > 0.0)
+      interlace < 2 || !(field_rad > 0.0)
           ? 0.0
           : rotation_rate_rad_s * scan.geometry.sweep_s * 2.0 * std::numbers::pi / field_rad;
   // The mean of i mod interlace over the beams, so that the turns add nothing on average.
@@ -34,9 +36,9 @@ Points2 ScanToPointsAtMidSweep(const sensors::LaserScan& scan, double min_range_
   points.reserve(beams);
   for (std::size_t i = 0; i < beams; ++i) {
     if (!scan.IsReturn(i) || scan.ranges_m[i] < min_range_m) continue;
-    const double angle = scan.BeamAngle(i) +
-                         turn_per_beam_rad * (static_cast<double>(i) - middle) +
-                         turn_per_mirror_turn_rad * (static_cast<double>(i % interlace) - mean_sweep);
+    const double sweep = static_cast<double>(i % interlace);
+    const double angle = scan.BeamAngle(i) + turn_per_beam_rad * (static_cast<double>(i) - middle) +
+                         turn_per_mirror_turn_rad * (sweep - mean_sweep);
     const double range = scan.ranges_m[i];
     points.emplace_back(range * std::cos(angle), range * std::sin(angle));
   }
