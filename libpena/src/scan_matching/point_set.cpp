@@ -5,6 +5,19 @@
 #include <numbers>
 
 namespace pena::scan_matching {
+namespace {
+
+// The mean of i mod interlace over beams i = 0 .. beams - 1 (> 0): the turns then add nothing
+// on average. Whole sweeps of `interlace` beams contribute 0 + 1 + ... + (interlace - 1) each.
+double MeanSweep(std::size_t beams, std::size_t interlace) {
+  const std::size_t whole = beams / interlace;
+  const std::size_t rest = beams % interlace;
+  const std::size_t sum =
+      whole * interlace * (interlace - 1) / 2 + (rest == 0 ? 0 : rest * (rest - 1) / 2);
+  return static_cast<double>(sum) / static_cast<double>(beams);
+}
+
+}  // namespace
 
 Points2 ScanToPoints(const sensors::LaserScan& scan, double min_range_m) {
   return ScanToPointsAtMidSweep(scan, min_range_m, 0.0);
@@ -28,10 +41,7 @@ Points2 ScanToPointsAtMidSweep(const sensors::LaserScan& scan, double min_range_
       interlace < 2 || !(field_rad > 0.0)
           ? 0.0
           : rotation_rate_rad_s * scan.geometry.sweep_s * 2.0 * std::numbers::pi / field_rad;
-  // The mean of i mod interlace over the beams, so that the turns add nothing on average.
-  double mean_sweep = 0.0;
-  for (std::size_t i = 0; i < beams; ++i) mean_sweep += static_cast<double>(i % interlace);
-  if (beams > 0) mean_sweep /= static_cast<double>(beams);
+  const double mean_sweep = turn_per_mirror_turn_rad == 0.0 ? 0.0 : MeanSweep(beams, interlace);
   Points2 points;
   points.reserve(beams);
   for (std::size_t i = 0; i < beams; ++i) {
