@@ -190,7 +190,8 @@ int CarmenInterlace(double angle_increment_rad, const ReadOptions& options) {
   constexpr double kOneDegree = std::numbers::pi / 180.0;
   const double steps_per_degree = kOneDegree / std::abs(angle_increment_rad);
   if (!(steps_per_degree > 1.5)) return 1;  // 1 deg or coarser (or no increment: one beam)
-  return static_cast<int>(std::min(std::round(steps_per_degree), 16.0));
+  constexpr auto kMax = static_cast<double>(sensors::LaserGeometry::kMaxInterlace);
+  return static_cast<int>(std::min(std::round(steps_per_degree), kMax));
 }
 
 std::optional<CarmenMessage> ParseCarmenLine(std::string_view line, const ReadOptions& options) {

@@ -27,8 +27,10 @@ const ReadOptions& Validated(const ReadOptions& options) {
     throw std::invalid_argument("ReadOptions::carmen_sweep_s must be in [0, 1] s, got " +
                                 std::to_string(options.carmen_sweep_s));
   }
-  if (!(options.carmen_interlace >= 0 && options.carmen_interlace <= 16)) {
-    throw std::invalid_argument("ReadOptions::carmen_interlace must be in [0, 16], got " +
+  constexpr int kMaxInterlace = sensors::LaserGeometry::kMaxInterlace;
+  if (!(options.carmen_interlace >= 0 && options.carmen_interlace <= kMaxInterlace)) {
+    throw std::invalid_argument("ReadOptions::carmen_interlace must be in [0, " +
+                                std::to_string(kMaxInterlace) + "], got " +
                                 std::to_string(options.carmen_interlace));
   }
   return options;

@@ -15,7 +15,7 @@ namespace {
 constexpr double kMaxRangeLimitM = 1.0e6;  // keeps millimetre deltas within sint32
 constexpr double kMinRangeLimitM = 0.01;
 constexpr double kMaxSweepS = 1.0;  // a scan that takes longer is not one scan
-constexpr int kMaxInterlace = 16;   // SICK lasers interleave at most 4 turns (0.25 deg)
+constexpr int kMaxInterlace = sensors::LaserGeometry::kMaxInterlace;
 
 template <class... Ts>
 struct Overloaded : Ts... {

@@ -25,6 +25,7 @@ struct LaserGeometry {
   // in one turn and its odd beams in the next, 1/75 s later (docs/odometry.md, "Interlaced
   // scans"). The turn takes sweep_s * 2 pi / field, the field being the beams' span.
   int interlace = 1;
+  static constexpr int kMaxInterlace = 16;  // SICK lasers interleave at most 4 turns (0.25 deg)
 };
 
 // One sweep. A beam that saw nothing holds kNoReturn (+infinity); readers map a format's own
