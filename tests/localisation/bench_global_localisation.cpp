@@ -139,6 +139,7 @@ void ApplySettings(localisation::LocalisationChainOptions& chain) {
     else if (name == "odometry.keyframe_absorbs_stride_jumps") chain.odometry.keyframe_absorbs_stride_jumps = value != 0.0;
     else if (name == "odometry.keyframe_stride_jump_share") chain.odometry.keyframe_stride_jump_share = value != 0.0;
     else if (name == "odometry.keyframe_stride_jump_across_weak") chain.odometry.keyframe_stride_jump_across_weak = value != 0.0;
+    else if (name == "odometry.local_map_keyframes") chain.odometry.local_map_keyframes = static_cast<int>(value);
     else {
       std::fprintf(stderr, "PENA_BENCH_SET: unknown tracker option %s\n", name.c_str());
       std::exit(2);

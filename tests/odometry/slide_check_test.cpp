@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,42 @@ TEST(SlideCheck, LetsTheMatchesCorrectAPriorThatAConstrainingMatchFoundOff) {
   const AlongErrors held = Along(ff1, Estimates(ff1, unchecked, 17.0), 15.75, 16.5);
   EXPECT_LT(checked.max_m, 0.08) << "held to the prior: " << held.max_m << " m";
   EXPECT_GT(held.max_m, 0.15);
+}
+
+}  // namespace
+}  // namespace pena::odometry
+
+namespace pena::odometry {
+namespace {
+
+double MaxDifferenceM(const std::vector<OdometryEstimate>& a, const std::vector<OdometryEstimate>& b) {
+  double max_m = a.size() == b.size() ? 0.0 : 1e9;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    max_m = std::max(max_m, std::hypot(a[i].world_from_body.x_m - b[i].world_from_body.x_m,
+                                       a[i].world_from_body.y_m - b[i].world_from_body.y_m));
+  }
+  return max_m;
+}
+
+// `pena map` runs people with the long reference (kAutoLocalMapKeyframes, session 28): auto is
+// the long one for a person, and it is a different run from the short default's.
+TEST(LocalMapLength, AutoIsTheLongReferenceForPeopleAndBelowItIsRefusedNamingTheField) {
+  const sim::EntityRecording walker = Office(5);
+  LaserOdometryOptions automatic;
+  automatic.local_map_keyframes = LaserOdometryOptions::kAutoLocalMapKeyframes;
+  LaserOdometryOptions long_reference;
+  long_reference.local_map_keyframes = LaserOdometryOptions::kLongLocalMapKeyframes;
+  const std::vector<OdometryEstimate> by_auto = Estimates(walker, automatic, 40.0);
+  EXPECT_EQ(MaxDifferenceM(by_auto, Estimates(walker, long_reference, 40.0)), 0.0);
+  EXPECT_GT(MaxDifferenceM(by_auto, Estimates(walker, {}, 40.0)), 0.01);
+  LaserOdometryOptions below;
+  below.local_map_keyframes = -2;
+  try {
+    LaserOdometry odometry(below, sensors::EntityKind::kHuman, {}, 0.0);
+    ADD_FAILURE() << "local_map_keyframes -2 was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("local_map_keyframes"), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace

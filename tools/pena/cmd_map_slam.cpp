@@ -62,6 +62,9 @@ odometry::LaserOdometryOptions OdometryOptionsOf(const MapArgs& args) {
     if (!IsSlamSetting(text)) settings.push_back(text);
   }
   odometry::LaserOdometryOptions options;
+  // A map is built offline, without a plan to correct the odometry: people's runs take the long
+  // reference, which drifts less along corridors (docs/odometry.md, session 28).
+  options.local_map_keyframes = odometry::LaserOdometryOptions::kAutoLocalMapKeyframes;
   ApplyOdometrySettings(settings, options);
   return options;
 }

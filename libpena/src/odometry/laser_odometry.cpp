@@ -22,10 +22,16 @@ MotionPrior Resolve(MotionPrior prior, sensors::EntityKind kind) {
 }
 
 // The reference chosen by place is the robots' default (session 11: with the frozen-odometry
-// handling better on all three Freiburg logs); people keep recency (mixed, twelfth round b).
+// handling better on all three Freiburg logs); people keep recency (mixed, twelfth round b). An
+// automatic local map length is the robots' short one or the people's long one (session 28).
 // The slide check is the people's with spread strides (session 24): on the raw stride stream
 // the prior moves in whole strides, and wheel odometry was not measured with it.
 LaserOdometryOptions ForEntity(LaserOdometryOptions options, sensors::EntityKind kind) {
+  if (options.local_map_keyframes == LaserOdometryOptions::kAutoLocalMapKeyframes) {
+    options.local_map_keyframes = kind == sensors::EntityKind::kRobot
+                                      ? LaserOdometryOptions::kShortLocalMapKeyframes
+                                      : LaserOdometryOptions::kLongLocalMapKeyframes;
+  }
   if (options.local_map_pool_keyframes == LaserOdometryOptions::kAutoPoolKeyframes) {
     options.local_map_pool_keyframes =
         kind == sensors::EntityKind::kRobot ? LaserOdometryOptions::kRobotPoolKeyframes : 0;
