@@ -90,12 +90,6 @@ TEST(SlideCheck, LetsTheMatchesCorrectAPriorThatAConstrainingMatchFoundOff) {
   EXPECT_GT(held.max_m, 0.15);
 }
 
-}  // namespace
-}  // namespace pena::odometry
-
-namespace pena::odometry {
-namespace {
-
 double MaxDifferenceM(const std::vector<OdometryEstimate>& a, const std::vector<OdometryEstimate>& b) {
   double max_m = a.size() == b.size() ? 0.0 : 1e9;
   for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
