@@ -43,6 +43,7 @@ SettingTargets SlamTargets(slam::SlamOptions& o) {
                      {"odometry_sigma_rad_per_m", &o.odometry_sigma_rad_per_m},
                      {"loop_sigma_m", &o.loop_sigma_m},
                      {"loop_sigma_rad", &o.loop_sigma_rad},
+                     {"loop_weak_sigma_max_m", &o.loop_weak_sigma_max_m},
                      {"max_loop_chi2", &o.max_loop_chi2},
                      {"heading_prior_sigma_rad", &o.heading_prior_sigma_rad}};
   targets.ints = {{"submap_keyframes", &o.submap_keyframes},

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "closure_information.hpp"
 #include "submap_matcher.hpp"
 
 namespace pena::slam {
@@ -17,12 +18,6 @@ struct ScanRecord {
   Pose2 world_from_odometry;
   int keyframe = 0;
 };
-
-Eigen::Matrix3d Information(double sigma_m, double sigma_rad) {
-  return Eigen::Vector3d(1.0 / (sigma_m * sigma_m), 1.0 / (sigma_m * sigma_m),
-                         1.0 / (sigma_rad * sigma_rad))
-      .asDiagonal();
-}
 
 double Distance(const Pose2& a, const Pose2& b) {
   return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m);
@@ -65,10 +60,10 @@ struct KeyframeSlam::Impl {
                                              world_from_odometry);
       const int node = graph.AddNode(geometry::Compose(graph.nodes().back(), motion));
       const double distance_m = std::hypot(motion.x_m, motion.y_m);
-      PoseEdge edge{node - 1, node, motion,
-                    Information(options.odometry_sigma_m + options.odometry_sigma_per_m * distance_m,
-                                options.odometry_sigma_rad +
-                                    options.odometry_sigma_rad_per_m * distance_m),
+      const double sigma_m = options.odometry_sigma_m + options.odometry_sigma_per_m * distance_m;
+      const double sigma_rad =
+          options.odometry_sigma_rad + options.odometry_sigma_rad_per_m * distance_m;
+      PoseEdge edge{node - 1, node, motion, internal::IsotropicInformation(sigma_m, sigma_rad),
                     false};
       graph.AddEdge(edge);
     }
@@ -166,7 +161,7 @@ struct KeyframeSlam::Impl {
   // Adds a robust match edge and re-optimises; drops it again when it disagrees with the graph.
   bool AddMatchEdge(int centre, int index, const internal::LoopMatch& match) {
     graph.AddEdge({centre, index, match.centre_from_scan,
-                   Information(options.loop_sigma_m, options.loop_sigma_rad), true});
+                   internal::ClosureInformation(match, options), true});
     Optimize();
     if (graph.EdgeChi2(graph.edges().back()) > options.max_loop_chi2) {
       graph.RemoveEdge(graph.edges().size() - 1);

@@ -52,6 +52,7 @@ void ValidateSlamOptions(const SlamOptions& o) {
   RequireNonNegative(o.odometry_sigma_rad_per_m, "odometry_sigma_rad_per_m", "rad/m");
   RequirePositive(o.loop_sigma_m, "loop_sigma_m", "m");
   RequirePositive(o.loop_sigma_rad, "loop_sigma_rad", "rad");
+  RequireNonNegative(o.loop_weak_sigma_max_m, "loop_weak_sigma_max_m", "m");
   RequirePositive(o.max_loop_chi2, "max_loop_chi2", "(chi2)");
   RequireNonNegative(o.heading_prior_sigma_rad, "heading_prior_sigma_rad", "rad");
 }

@@ -121,7 +121,7 @@ std::optional<LoopMatch> SubmapMatcher::Match(const std::vector<Keyframe>& keyfr
     return std::nullopt;
   }
   if (!WellConditioned(result.information, options_.degenerate_eigen_ratio)) return std::nullopt;
-  return LoopMatch{result.reference_from_scan, result.score};
+  return LoopMatch{result.reference_from_scan, result.score, result.information};
 }
 
 }  // namespace pena::slam::internal

@@ -2,6 +2,7 @@
 // Loop-closure matching: a keyframe's scan against the submap of older keyframes around one of
 // them (internal to pena::slam).
 
+#include <Eigen/Core>
 #include <optional>
 #include <vector>
 
@@ -20,10 +21,13 @@ struct Keyframe {
   double path_m = 0.0;
 };
 
-// An accepted match: the scan's pose in the centre keyframe's frame, and its score.
+// An accepted match: the scan's pose in the centre keyframe's frame, its score, and the
+// refinement's J^T J in (x_m, y_m, theta_rad) of the centre frame (how well each direction is
+// pinned down: a corridor leaves its length weak).
 struct LoopMatch {
   geometry::Pose2 centre_from_scan;
   double score = 0.0;
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
 };
 
 // Builds (and keeps while neither the centre nor the graph changed) the matcher of one submap.

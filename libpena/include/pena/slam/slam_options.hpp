@@ -58,6 +58,14 @@ struct SlamOptions {
   double odometry_sigma_rad_per_m = 0.01;
   double loop_sigma_m = 0.05;
   double loop_sigma_rad = 0.01;
+  // Closure edges shaped by their match. A corridor closure pins the walls' across position to a
+  // centimetre or two and its along position to several (opposite walking directions, 19 office
+  // maps: sd 0.019 m across, 0.076 m along), so the position sigma is loop_sigma_m along the
+  // best-pinned direction of the match's J^T J and loop_sigma_m * sqrt(lambda_max / lambda_min)
+  // along the weakest, at most this (m; with degenerate_eigen_ratio 0.05 the ratio gives at most
+  // 0.22 m). 0: loop_sigma_m both ways, as before session 29 (30 simulated maps: coverage 68.2 ->
+  // 71.2 %; Freiburg intel 0.0191 -> 0.0178 m, aces 0.261 -> 0.204 m; docs/slam.md).
+  double loop_weak_sigma_max_m = 0.5;
   // Absolute heading (0: off). A person's odometry heading is held to magnetic north by the
   // dead reckoning's compass, so it does not drift as a robot's does. With this > 0 every
   // keyframe keeps its odometry heading with this sigma, and a loop closure moves positions
