@@ -7,10 +7,8 @@
 
 #include <cmath>
 #include <numbers>
-#include <stdexcept>
 #include <string>
 
-#include "pena/slam/keyframe_slam.hpp"
 #include "pena/slam/pose_graph.hpp"
 
 namespace pena::slam::internal {
@@ -83,17 +81,6 @@ TEST(ClosureInformation, TheWeakSigmaIsCappedAlsoWithoutAnyInformationAlong) {
   featureless.information(0, 0) = 0.0;
   EXPECT_NEAR(Chi2AfterShift(featureless, options, centre, {0.2, 0.0}), 1.0, 1e-6);
   EXPECT_NEAR(Chi2AfterShift(featureless, options, centre, {0.0, 0.05}), 1.0, 1e-6);
-}
-
-TEST(ClosureInformation, ANegativeCapIsRefusedNamingTheField) {
-  SlamOptions options;
-  options.loop_weak_sigma_max_m = -0.1;
-  try {
-    KeyframeSlam slam(options);
-    FAIL() << "no exception";
-  } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find("slam.loop_weak_sigma_max_m"), std::string::npos);
-  }
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pena/sim/laser_raycaster.hpp"
@@ -165,13 +166,20 @@ TEST(KeyframeSlam, KeepsTheOdometryWhenNothingIsRevisited) {
 }
 
 TEST(KeyframeSlam, RefusesOptionsNamingTheField) {
-  SlamOptions options;
-  options.keyframe_distance_m = -1.0;
-  try {
-    KeyframeSlam slam(options);
-    FAIL() << "no exception";
-  } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find("slam.keyframe_distance_m"), std::string::npos);
+  SlamOptions keyframe_distance;
+  keyframe_distance.keyframe_distance_m = -1.0;
+  SlamOptions weak_sigma_cap;
+  weak_sigma_cap.loop_weak_sigma_max_m = -0.1;
+  const std::pair<SlamOptions, std::string> cases[] = {
+      {keyframe_distance, "slam.keyframe_distance_m"},
+      {weak_sigma_cap, "slam.loop_weak_sigma_max_m"}};
+  for (const auto& [options, field] : cases) {
+    try {
+      KeyframeSlam slam(options);
+      ADD_FAILURE() << "no exception for " << field;
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
+    }
   }
 }
 
