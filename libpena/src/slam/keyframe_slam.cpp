@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "closure_information.hpp"
+#include "edge_information.hpp"
 #include "submap_matcher.hpp"
 
 namespace pena::slam {

@@ -1,4 +1,4 @@
-#include "closure_information.hpp"
+#include "edge_information.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
