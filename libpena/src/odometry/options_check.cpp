@@ -25,8 +25,13 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
   Require(o.deskew_match_passes >= 0 && o.deskew_match_passes <= 10, "deskew_match_passes",
           "in [0, 10]", o.deskew_match_passes);
   Require(o.min_match_points >= 3, "min_match_points", ">= 3 points", o.min_match_points);
-  Require(o.local_map_keyframes >= 1, "local_map_keyframes",
-          ">= 1, or -1 (auto: 8 for robots, 24 for people)", o.local_map_keyframes);
+  // Built from the constants, so the message follows them.
+  static const std::string kLocalMapRule =
+      ">= 1, or -1 (auto: " + std::to_string(LaserOdometryOptions::kShortLocalMapKeyframes) +
+      " for robots, " + std::to_string(LaserOdometryOptions::kLongLocalMapKeyframes) +
+      " for people)";
+  Require(o.local_map_keyframes >= 1, "local_map_keyframes", kLocalMapRule.c_str(),
+          o.local_map_keyframes);
   Require(o.local_map_pool_keyframes >= LaserOdometryOptions::kAutoPoolKeyframes,
           "local_map_pool_keyframes", ">= 0 (0: off) or -1 (auto: 40 for robots, off for people)",
           o.local_map_pool_keyframes);
