@@ -2,9 +2,9 @@
 # Issue 4's mapping figure from odometry poses over many simulated missions: each office and
 # loop170 seed is simulated (once; kept in the work directory), mapped with `pena map` (odometry
 # + SLAM unless the extra options say otherwise) and scored with `pena eval --lines` against the
-# walls its laser saw. Prints each mission's coverage, precision and fragmentation, and the means
-# over office, over loop170, over the issue's headline set (both scenarios, seeds 1-8) and over
-# all. `--aligned` adds the coverage left once the map is moved by the rigid fit of its trajectory
+# walls its laser saw. Prints each mission's coverage, precision, fragmentation and trajectory RMSE
+# (against truth.tum; coverage follows it, docs/slam.md, session 30), and the means over office,
+# loop170, the issue's headline set (both scenarios, seeds 1-8) and all. `--aligned` adds the coverage left once the map is moved by the rigid fit of its trajectory
 # onto the truth (scripts/aligned-line-map.py): the map's own inconsistency, without the shift.
 # Single maps are chaotic (a change that leaves the 30-map mean within a point moves single maps
 # by up to 60 points, docs/slam.md, session 28), so compare variants on the means.
@@ -64,6 +64,11 @@ map_one() {
   "$pena" map --quiet --log "$mission/ff1/sensors.penalog" --out "$out" "${extra[@]}" \
     > "$out.log" 2>&1 || { echo "map-coverage: pena map failed on $scenario seed $seed ($out.log)" >&2; return 1; }
   "$pena" eval --lines "$out/lines.csv" --walls "$mission/observed.csv" > "$out.eval"
+  rm -f "$out.trajectory.eval"
+  if [[ -f "$out/trajectory.tum" ]]; then
+    "$pena" eval --trajectory "$out/trajectory.tum" --truth "$mission/ff1/truth.tum" \
+      > "$out.trajectory.eval"
+  fi
   if [[ $aligned == 1 ]]; then
     python3 scripts/aligned-line-map.py "$out/trajectory.tum" "$mission/ff1/truth.tum" \
       "$out/lines.csv" "$out.aligned.csv" 2> /dev/null
@@ -86,7 +91,13 @@ while ((running > 0)); do wait -n || failed=1; running=$((running - 1)); done
 figure() { awk -v key="$2" '$1 == key { print $(NF - 1); exit }' "$1"; }
 fragmentation() { awk '$1 == "fragmentation" { print $NF; exit }' "$1"; }
 
-printf '%-12s %9s %10s %14s' mission coverage precision fragmentation
+# "translation RMSE [m]   0.3916" -> 0.3916 (- when the map had no trajectory of its own)
+trajectory_rmse() {
+  [[ -f "$1" ]] || { echo -; return; }
+  awk '$1 == "translation" && $2 == "RMSE" { print $NF; exit }' "$1"
+}
+
+printf '%-12s %9s %10s %14s %16s' mission coverage precision fragmentation "trajectory RMSE"
 [[ $aligned == 1 ]] && printf ' %17s' "aligned coverage"
 printf '\n'
 rows=()
@@ -96,20 +107,24 @@ for m in "${missions[@]}"; do
   c=$(figure "$base.eval" coverage)
   p=$(figure "$base.eval" precision)
   f=$(fragmentation "$base.eval")
+  r=$(trajectory_rmse "$base.trajectory.eval")
   a=-
   [[ $aligned == 1 ]] && a=$(figure "$base.aligned.eval" coverage)
-  printf '%-12s %8s%% %9s%% %14s' "$scenario-$seed" "$c" "$p" "$f"
+  shown=-
+  [[ $r != - ]] && shown="$r m"
+  printf '%-12s %8s%% %9s%% %14s %16s' "$scenario-$seed" "$c" "$p" "$f" "$shown"
   [[ $aligned == 1 ]] && printf ' %16s%%' "$a"
   printf '\n'
-  rows+=("$scenario $seed $c $p $a")
+  rows+=("$scenario $seed $c $p $a $r")
 done
 printf '%s\n' "${rows[@]}" | awk -v aligned="$aligned" '
-  function add(k) { n[k]++; c[k] += $3; p[k] += $4; a[k] += $5 }
+  function add(k) { n[k]++; c[k] += $3; p[k] += $4; a[k] += $5; if ($6 != "-") { r[k] += $6; nr[k]++ } }
   { add($1); add("all"); if ($2 <= 8) add("headline") }
   function show(k, label) {
     if (!n[k]) return
     printf "mean %-40s coverage %5.1f %%, precision %5.1f %%", label " (" n[k] " maps)", c[k] / n[k], p[k] / n[k]
     if (aligned == 1) printf ", aligned coverage %5.1f %%", a[k] / n[k]
+    if (nr[k]) printf ", trajectory RMSE %.3f m", r[k] / nr[k]
     printf "\n"
   }
   END {
