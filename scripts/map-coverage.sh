@@ -4,8 +4,9 @@
 # + SLAM unless the extra options say otherwise) and scored with `pena eval --lines` against the
 # walls its laser saw. Prints each mission's coverage, precision, fragmentation and trajectory RMSE
 # (against truth.tum; coverage follows it, docs/slam.md, session 30), and the means over office,
-# loop170, the issue's headline set (both scenarios, seeds 1-8) and all. `--aligned` adds the coverage left once the map is moved by the rigid fit of its trajectory
-# onto the truth (scripts/aligned-line-map.py): the map's own inconsistency, without the shift.
+# loop170, the issue's headline set (both scenarios, seeds 1-8) and all. `--aligned` adds the
+# coverage left once the map is moved by the rigid fit of its trajectory onto the truth
+# (scripts/aligned-line-map.py): the map's own inconsistency, without the shift.
 # Single maps are chaotic (a change that leaves the 30-map mean within a point moves single maps
 # by up to 60 points, docs/slam.md, session 28), so compare variants on the means.
 #
@@ -34,7 +35,7 @@ while [[ $# -gt 0 ]]; do
     --jobs) jobs=$2; shift 2 ;;
     --aligned) aligned=1; shift ;;
     --) shift; extra=("$@"); break ;;
-    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
     *) echo "map-coverage: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -118,7 +119,10 @@ for m in "${missions[@]}"; do
   rows+=("$scenario $seed $c $p $a $r")
 done
 printf '%s\n' "${rows[@]}" | awk -v aligned="$aligned" '
-  function add(k) { n[k]++; c[k] += $3; p[k] += $4; a[k] += $5; if ($6 != "-") { r[k] += $6; nr[k]++ } }
+  function add(k) {
+    n[k]++; c[k] += $3; p[k] += $4; a[k] += $5
+    if ($6 != "-") { r[k] += $6; nr[k]++ }
+  }
   { add($1); add("all"); if ($2 <= 8) add("headline") }
   function show(k, label) {
     if (!n[k]) return
