@@ -205,6 +205,60 @@ TEST(Simulator, ObservedSegmentsLieOnTheirWalls) {
   EXPECT_LE(observed_m, 128.0 + 1e-9);
 }
 
+// Walls 0.2 m thick around the corridor loop's lines: from the corridor the laser meets the
+// rectangles 0.1 m inside the outer walls and 0.1 m outside the block (built here by hand, not
+// with ThickWallFaces), and every observed part lies 0.1 m from its wall.
+TEST(Simulator, ThickWallsMoveTheFacesTheLaserMeetsAndTheObservedParts) {
+  const Scenario scenario = testing::CorridorLoop();
+  SimulationOptions options = testing::NoiseFreeLaser();
+  options.wall_thickness_m = 0.2;
+  const SimulationResult result = Simulate(scenario, options);
+  Scenario faces = scenario;
+  faces.walls = testing::Rectangle(0.1, 0.1, 19.9, 11.9);
+  for (const auto& wall : testing::Rectangle(1.9, 1.9, 18.1, 10.1)) faces.walls.push_back(wall);
+  const EntityRecording& ff1 = result.entities.at(0);
+  std::map<double, sensors::GroundTruth> truth_at;
+  for (const auto& truth : ff1.truth) truth_at[truth.stamp_s] = truth;
+  std::size_t checked = 0;
+  for (const auto& record : ff1.records) {
+    const auto* scan = std::get_if<sensors::LaserScan>(&record);
+    if (!scan) continue;
+    const sensors::GroundTruth& truth = truth_at.at(scan->stamp_s);
+    for (std::size_t b = 0; b < scan->ranges_m.size(); ++b) {
+      const double expected = ExpectedRange(faces, truth, scan->BeamAngle(b));
+      if (expected >= scan->geometry.max_range_m - 0.01) continue;
+      ASSERT_NEAR(scan->ranges_m[b], expected, 6e-4) << "t " << scan->stamp_s << " beam " << b;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 50000u);
+  // Each observed part lies on the faces, and on its own wall's box: within 0.1 m of the wall's
+  // line, or on a cap beyond its end (a corner's cap lies in the other wall's face).
+  const auto on_faces = [&faces](const Eigen::Vector2d& p) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& face : faces.walls) {
+      nearest = std::min(nearest, geometry::DistanceToSegment(face, p));
+    }
+    return nearest;
+  };
+  ASSERT_FALSE(result.observed.empty());
+  for (const ObservedSegment& part : result.observed) {
+    const geometry::Segment2& wall = scenario.walls.at(part.wall_index);
+    for (const Eigen::Vector2d& end : {part.segment.start_m, part.segment.end_m}) {
+      EXPECT_LT(on_faces(end), 1e-9);
+      EXPECT_LE(geometry::DistanceToSegment(wall, end), 0.1 * std::sqrt(2.0) + 1e-9);
+      EXPECT_GE(geometry::DistanceToSegment(wall, end), 0.1 - 1e-9);
+    }
+  }
+  // The walker keeps the lines: the same walk as without thickness.
+  const EntityRecording thin = Simulate(scenario, testing::NoiseFreeLaser()).entities.at(0);
+  ASSERT_EQ(ff1.truth.size(), thin.truth.size());
+  for (std::size_t i = 0; i < thin.truth.size(); ++i) {
+    ASSERT_EQ(ff1.truth[i].world_from_body.x_m, thin.truth[i].world_from_body.x_m) << i;
+    ASSERT_EQ(ff1.truth[i].world_from_body.y_m, thin.truth[i].world_from_body.y_m) << i;
+  }
+}
+
 TEST(Simulator, SmokeLimitsEveryRange) {
   Scenario scenario = testing::CorridorLoop();
   scenario.smoke.push_back({{{-1.0, -1.0}, {21.0, 13.0}}, 2.5});
@@ -280,6 +334,15 @@ TEST(Simulator, RejectsRatesThatDoNotDivideTheMotionRate) {
   options = {};
   options.laser_max_range_m = -1.0;
   EXPECT_THROW(Simulator{options}, std::invalid_argument);
+  options = {};
+  options.wall_thickness_m = -0.1;
+  try {
+    Simulator{options};
+    ADD_FAILURE() << "a negative wall thickness was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("simulation.wall_thickness_m"), std::string::npos)
+        << error.what();
+  }
 }
 
 }  // namespace

@@ -26,6 +26,7 @@ struct SimulateArgs {
   std::uint64_t seed = 1;
   std::string out;
   int laps = 0;
+  double wall_thickness_m = 0.0;
   bool print_scenario = false;
 };
 
@@ -99,11 +100,15 @@ void RunSimulate(const SimulateArgs& args) {
   }
   sim::SimulationOptions options;
   options.seed = args.seed;
+  options.wall_thickness_m = args.wall_thickness_m;
   const auto started = std::chrono::steady_clock::now();
   const sim::SimulationResult result = sim::Simulator(options).Run(scenario);
   std::string producer =
       "pena simulate --scenario " + args.scenario + " --seed " + std::to_string(args.seed);
   if (args.laps > 0) producer += " --laps " + std::to_string(args.laps);
+  if (args.wall_thickness_m > 0.0) {
+    producer += " --wall-thickness " + Fixed(args.wall_thickness_m, 3);
+  }
   const sim::MissionFiles files = sim::WriteMission(scenario, result, args.out, producer);
   const std::string picture = (std::filesystem::path(args.out) / "mission.png").string();
   if (!cv::imwrite(picture, sim::RenderMission(scenario, result))) {
@@ -129,6 +134,12 @@ void AddSimulateCommand(CLI::App& app) {
   command->add_option("--out", args->out, "Output directory (created if missing)");
   command->add_option("--laps", args->laps, "Laps for every entity (overrides the scenario)")
       ->check(CLI::Range(1, 1000));
+  command
+      ->add_option("--wall-thickness", args->wall_thickness_m,
+                   "Metres: the laser meets each wall as a box this thick (door jambs, both "
+                   "faces); walkers and floorplan.csv keep the lines (docs/simulator.md)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   command->add_flag("--print-scenario", args->print_scenario,
                     "Print the scenario text and exit (start your own file from a built-in)");
   command->callback([args] { RunSimulate(*args); });

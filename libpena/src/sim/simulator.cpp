@@ -7,6 +7,7 @@
 #include <string>
 
 #include "pena/sim/laser_raycaster.hpp"
+#include "pena/sim/wall_thickness.hpp"
 
 namespace pena::sim {
 namespace {
@@ -215,6 +216,9 @@ Simulator::Simulator(const SimulationOptions& options) : options_(options) {
   Require(o.human_laser_height_m > 0.0 && o.robot_laser_height_m > 0.0,
           "simulation.human_laser_height_m and robot_laser_height_m must be > 0 m");
   Require(o.laps_override >= 0, "simulation.laps_override must be >= 0");
+  Require(o.wall_thickness_m >= 0.0 && o.wall_thickness_m <= 1.0,
+          "simulation.wall_thickness_m must be in [0, 1] m, got " +
+              std::to_string(o.wall_thickness_m));
   // Construct each model once so bad sub-options fail here, not halfway through a mission.
   HumanMotionOptions human = o.human;
   human.rate_hz = o.motion_rate_hz;
@@ -240,8 +244,12 @@ SimulationResult Simulator::Run(const Scenario& scenario) const {
   Require(scenario.ceiling_height_m >
               std::max(options_.human_laser_height_m, options_.robot_laser_height_m),
           "scenario " + scenario.name + ": ceiling_height_m must be above the laser heights");
-  const LaserRaycaster raycaster(scenario.walls, scenario.ceiling_height_m);
-  WallCoverage coverage(scenario.walls, options_.coverage);
+  // The laser's walls: the scenario's lines, or boxes around them (the walkers keep the lines).
+  const bool thick = options_.wall_thickness_m > 0.0;
+  const std::vector<geometry::Segment2> laser_walls =
+      thick ? ThickWallFaces(scenario.walls, options_.wall_thickness_m) : scenario.walls;
+  const LaserRaycaster raycaster(laser_walls, scenario.ceiling_height_m);
+  WallCoverage coverage(laser_walls, options_.coverage);
   const Random base(options_.seed);
   SimulationResult result;
   result.mission = scenario.name;
@@ -254,6 +262,9 @@ SimulationResult Simulator::Run(const Scenario& scenario) const {
     result.entities.push_back(entity.Run(spec, LaserGeometry()));
   }
   result.observed = coverage.Segments();
+  if (thick) {  // a face's id is its wall's, as floorplan.csv numbers them
+    for (ObservedSegment& part : result.observed) part.wall_index /= kFacesPerThickWall;
+  }
   if (!result.entities.empty()) {
     result.start_s = result.entities.front().start_s;
     result.end_s = result.entities.front().end_s;

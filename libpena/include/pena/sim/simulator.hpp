@@ -22,6 +22,10 @@ namespace pena::sim {
 struct SimulationOptions {
   std::uint64_t seed = 1;
   int laps_override = 0;          // > 0 replaces every entity's laps
+  // The laser meets each wall as a box this thick around its line (door jambs, both faces;
+  // ThickWallFaces), and the observed walls are those faces; the walkers, floorplan.csv and the
+  // a priori plan keep the lines. 0: walls without thickness, as the scenarios draw them.
+  double wall_thickness_m = 0.0;
   double motion_rate_hz = 100.0;  // dense true trajectory; every sensor rate must divide it
   double laser_rate_hz = 4.0;
   int laser_beams = 361;
