@@ -220,6 +220,7 @@ void WriteSummaryJson(const std::filesystem::path& path, const OdometryArgs& arg
   if (c.walker_fixed_dropped > 0) out << ", \"walker_fixed_dropped\": " << c.walker_fixed_dropped;
   if (c.seen_through_dropped > 0) out << ", \"seen_through_dropped\": " << c.seen_through_dropped;
   if (c.pace_held > 0) out << ", \"pace_held\": " << c.pace_held;
+  if (c.refused > 0) out << ", \"refused\": " << c.refused;
   // Only for swept lasers (CARMEN logs): the simulated missions' summaries stay as they were.
   if (c.deskewed > 0) out << ", \"deskewed\": " << c.deskewed;
   out << ", \"no_points\": " << c.no_points << ", \"prior_only\": " << run.prior_only

@@ -63,6 +63,7 @@ std::map<std::string, double*> SettableOptions(odometry::LaserOdometryOptions& o
           {"prior_gate_m", &o.prior_gate_m},
           {"prior_gate_agree_gyro_m", &o.prior_gate_agree_gyro_m},
           {"prior_gate_agree_gyro_rad", &o.prior_gate_agree_gyro_rad},
+          {"prior_gate_refuse_gyro_rad", &o.prior_gate_refuse_gyro_rad},
           {"prior_gate_compass_window_s", &o.prior_gate_compass_window_s},
           {"stale_repeat_m", &o.stale_repeat_m},
           {"tilt_max_pitch_rad", &o.tilt_max_pitch_rad},

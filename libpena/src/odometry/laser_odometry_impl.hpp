@@ -195,8 +195,9 @@ struct LaserOdometry::Impl {
   void CommitHeld(OdometryEstimate& out);
   // kGated: outside the prior-consistency gate; kTrusted: outside, but the last
   // prior_gate_confirm scans all were (the motion sensor is what is wrong).
-  enum class GateDecision { kInside, kGated, kTrusted };
+  enum class GateDecision { kInside, kGated, kRefused, kTrusted };
   GateDecision CheckPriorGate(const OdometryEstimate& out);
+  bool OffTheGyroHeading() const;
   bool HoldDuringFastTurn(double score, const OdometryEstimate& out) const;
   double GateBaseRad() const;
   // How far a match may deviate from the prior before the gate holds it (nullopt: no gate now).

@@ -126,6 +126,17 @@ std::optional<LaserOdometry::Impl::GateAllowance> LaserOdometry::Impl::PriorGate
                        GateBaseRad() + fraction_rad * turned_rad};
 }
 
+// Against the filter's own heading, not the prior's: the prior carries the keyframes' heading
+// errors, which a right match has to correct.
+bool LaserOdometry::Impl::OffTheGyroHeading() const {
+  const double refuse_rad = options.prior_gate_refuse_gyro_rad;
+  if (refuse_rad <= 0.0 || motion.mode() != MotionPrior::kDeadReckoning || !motion.last_pose()) {
+    return false;
+  }
+  return std::abs(geometry::NormalizeAngle(estimate.theta_rad - motion.last_pose()->theta_rad)) >
+         refuse_rad;
+}
+
 LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const OdometryEstimate& out) {
   const std::optional<GateAllowance> allowed = PriorGateAllowance();
   if (!allowed) return GateDecision::kInside;
@@ -143,6 +154,10 @@ LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const Odom
   // lasts: the scans' deviations then change scan to scan and must count without agreeing
   // (the disturbed-compass tests: 0.97 -> 4.9 m RMS if they have to agree).
   const bool agree = !motion.CompassRejectedWithin(out.stamp_s, options.prior_gate_compass_window_s);
+  if (agree && OffTheGyroHeading()) {
+    gate_confirmation.Inside();  // no evidence against the motion sensor: the run is over
+    return GateDecision::kRefused;
+  }
   return gate_confirmation.Outside(deviation, confirm, agree) ? GateDecision::kTrusted
                                                               : GateDecision::kGated;
 }

@@ -100,9 +100,16 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
   ++(degenerate ? counts.degenerate : counts.matched);
   if (out.stale) return;  // where the earlier scan was taken: output, but it anchors nothing
   const GateDecision gate = CheckPriorGate(out);
-  if (gate == GateDecision::kGated) {
+  if (gate == GateDecision::kGated || gate == GateDecision::kRefused) {
     out.gated = true;  // the pose is the match's, but it anchors nothing
     ++counts.gated;
+    if (gate == GateDecision::kRefused) {  // not even the pose: the gyro says it is aliased
+      out.refused = true;
+      ++counts.refused;
+      estimate = out.world_from_prior;
+      fell_back = true;  // its covariance is the prior's
+      match_weak_direction.reset();
+    }
     const int fallback = options.prior_gate_fallback_scans;
     if (fallback > 0 && ++gated_in_row >= fallback) FallBackToPrior(points, out);
     return;

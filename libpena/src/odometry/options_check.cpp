@@ -114,6 +114,8 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           o.prior_gate_agree_gyro_m);
   Require(o.prior_gate_agree_gyro_rad > 0.0, "prior_gate_agree_gyro_rad", "> 0 rad",
           o.prior_gate_agree_gyro_rad);
+  Require(o.prior_gate_refuse_gyro_rad >= 0.0, "prior_gate_refuse_gyro_rad", ">= 0 rad (0: off)",
+          o.prior_gate_refuse_gyro_rad);
   Require(o.prior_gate_fallback_scans >= 0, "prior_gate_fallback_scans", ">= 0 scans (0: off)",
           o.prior_gate_fallback_scans);
   Require(!o.keyframe_stride_jump_share || o.keyframe_absorbs_stride_jumps,

@@ -250,6 +250,15 @@ struct LaserOdometryOptions {
   // plan localisation from 0.27 to 0.68 m (docs/odometry.md, sixth round continued).
   double prior_gate_agree_gyro_m = 0.0;
   double prior_gate_agree_gyro_rad = 0.05235987755982989;  // 3 deg
+  // With a gyro and the compass accepted (none rejected within prior_gate_compass_window_s), a
+  // gated match whose heading is more than this off the dead reckoning's own gyro + compass
+  // heading is refused: it never counts towards trust, and its scan is output at the prior. The
+  // compass holds that heading to about a degree, while a room's corners alias a match by 90 deg
+  // in a turn on the spot (office seed 13 with 15 cm walls: three gated matches 34, 90 and 90 deg
+  // off were trusted and the walk went on 90 deg off, 16 m RMSE; refused, 1.0 m). Measured from
+  // the keyframe-anchored prior instead, it refused right matches after the keyframes had drifted
+  // (team seed 2 ff3, 15 cm walls: 1.15 -> 4.8 m). 0: off. Figures: docs/odometry.md.
+  double prior_gate_refuse_gyro_rad = 0.3490658503988659;  // 20 deg
   // After this many gated scans in a row that were never trusted (they disagree: only possible
   // with prior_gate_agree_gyro_m > 0 or a count above this), the scan is handled like a failed
   // match: the pose is the motion prior's (with dead reckoning: its position, and the gyro +
@@ -330,6 +339,7 @@ struct OdometryEstimate {
   bool reference_changed = false;    // this scan became a keyframe (map localisation runs here)
   bool wide_search = false;          // the window was larger than the paper's
   bool gated = false;  // matched far from the motion prior: not a keyframe (prior-consistency gate)
+  bool refused = false;  // gated and refused against the gyro + compass heading: output at the prior
   bool stale = false;  // repeats an earlier scan (delivered late): not a keyframe
 };
 
@@ -338,6 +348,7 @@ struct OdometryCounts {
   long scans = 0, matched = 0, degenerate = 0, failed = 0, no_points = 0, keyframes = 0;
   long wide_searches = 0;
   long gated = 0;            // matches outside the prior-consistency gate (not made keyframes)
+  long refused = 0;          // of those, refused against the gyro + compass (prior_gate_refuse_gyro_rad)
   long stale = 0;            // scans repeating an earlier scan (not made keyframes)
   long turn_held = 0;        // poor matches in fast turns not made keyframes (keyframe_turn_*)
   long pace_held = 0;        // matches that kept the prior along the walk (pace_check_*)
