@@ -193,8 +193,9 @@ struct LaserOdometry::Impl {
                    bool bursty, double stamp_s, const Eigen::Matrix3d& covariance);
   bool NearAKeyframe(const geometry::Pose2& moved) const;
   void CommitHeld(OdometryEstimate& out);
-  // kGated: outside the prior-consistency gate; kTrusted: outside, but the last
-  // prior_gate_confirm scans all were (the motion sensor is what is wrong).
+  // kGated: outside the prior-consistency gate; kRefused: outside and far off the gyro + compass
+  // heading (prior_gate_refuse_gyro_rad: aliased, output at the prior); kTrusted: outside, but
+  // the last prior_gate_confirm scans all were (the motion sensor is what is wrong).
   enum class GateDecision { kInside, kGated, kRefused, kTrusted };
   GateDecision CheckPriorGate(const OdometryEstimate& out);
   bool OffTheGyroHeading() const;
