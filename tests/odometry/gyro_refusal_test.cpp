@@ -5,6 +5,7 @@
 // 90 deg off (16 m RMSE over the whole walk, as `pena map` runs people).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
