@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,6 +15,7 @@
 #include "pena/odometry/laser_odometry.hpp"
 #include "pena/sim/scenario.hpp"
 #include "pena/sim/simulator.hpp"
+#include "expect_refused.hpp"
 #include "team_entity.hpp"
 
 namespace pena::odometry {
@@ -95,12 +95,7 @@ TEST(GyroRefusal, WithoutItTheCornerTurnsTheWalker) {
 TEST(GyroRefusal, ANegativeLimitIsRefusedNamingTheField) {
   LaserOdometryOptions options;
   options.prior_gate_refuse_gyro_rad = -0.1;
-  try {
-    LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
-    FAIL() << "expected std::invalid_argument";
-  } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find("prior_gate_refuse_gyro_rad"), std::string::npos) << error.what();
-  }
+  testing::ExpectRefused(options, "prior_gate_refuse_gyro_rad");
 }
 
 }  // namespace

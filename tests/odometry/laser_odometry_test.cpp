@@ -1,5 +1,6 @@
 // The per-entity chain on simulated missions (ground truth known) and on broken input.
 #include "pena/odometry/laser_odometry.hpp"
+#include "expect_refused.hpp"
 #include "team_entity.hpp"
 
 #include <gtest/gtest.h>
@@ -225,15 +226,7 @@ TEST(LaserOdometry, PaceCheckHoldsCorridorSlidesBack) {
               kWalks, checked_sum_m / kWalks, unchecked_sum_m / kWalks, held);
 }
 
-// A person's odometry with `options` is refused with a message naming `field`.
-void ExpectRefused(const LaserOdometryOptions& options, const std::string& field) {
-  try {
-    LaserOdometry odometry(options, sensors::EntityKind::kHuman, {}, 0.0);
-    ADD_FAILURE() << "accepted " << field;
-  } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
-  }
-}
+using testing::ExpectRefused;
 
 TEST(LaserOdometry, RefusesAPaceCheckOutOfRangeNamingTheField) {
   LaserOdometryOptions options;
