@@ -11,16 +11,18 @@
 # by up to 60 points, docs/slam.md, session 28), so compare variants on the means.
 #
 #   scripts/map-coverage.sh [--build DIR] [--work DIR] [--office "1 2 ..."] [--loop "1 2 ..."]
-#                           [--jobs N] [--aligned] [-- extra pena map options, e.g. --no-slam
+#                           [--jobs N] [--aligned] [--laps N] [-- extra pena map options, e.g. --no-slam
 #                           or --set slam.loop_window_m=0.3]
 # Defaults: office seeds 1-19, loop170 seeds 1-11, two maps at a time, work dir
 # /tmp/pena-map-coverage (missions in WORK/missions, maps in WORK/maps). About 2 minutes on two
-# cores once the missions exist.
+# cores once the missions exist. `--laps N` walks every route N times (`pena simulate --laps`); the
+# work dir then defaults to /tmp/pena-map-coverage-lapsN (docs/slam.md, session 32).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 build=build
-work=/tmp/pena-map-coverage
+work=
+laps=1
 office_seeds=$(seq -s ' ' 1 19)
 loop_seeds=$(seq -s ' ' 1 11)
 jobs=2
@@ -34,14 +36,20 @@ while [[ $# -gt 0 ]]; do
     --loop) loop_seeds=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
     --aligned) aligned=1; shift ;;
+    --laps) laps=$2; shift 2 ;;
     --) shift; extra=("$@"); break ;;
-    -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
     *) echo "map-coverage: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
 pena="$build/tools/pena/pena"
 [[ -x "$pena" ]] || { echo "map-coverage: $pena not built" >&2; exit 1; }
 [[ "$jobs" =~ ^[1-9][0-9]*$ ]] || { echo "map-coverage: --jobs must be a positive integer, not '$jobs'" >&2; exit 2; }
+[[ "$laps" =~ ^[1-9][0-9]*$ ]] || { echo "map-coverage: --laps must be a positive integer, not '$laps'" >&2; exit 2; }
+if [[ -z "$work" ]]; then
+  work=/tmp/pena-map-coverage
+  ((laps > 1)) && work="$work-laps$laps"
+fi
 for seed in $office_seeds $loop_seeds; do
   [[ "$seed" =~ ^[0-9]+$ ]] || { echo "map-coverage: seeds must be integers, not '$seed'" >&2; exit 2; }
 done
@@ -51,11 +59,22 @@ for seed in $office_seeds; do missions+=("office $seed"); done
 for seed in $loop_seeds; do missions+=("loop170 $seed"); done
 mkdir -p "$work/missions" "$work/maps"
 
-# Simulates one mission if it is not there yet (the simulator is deterministic per seed).
+# Simulates one mission if it is not there yet (the simulator is deterministic per seed). DIR/laps
+# records the laps walked (missing: 1, as written before --laps), so that a work directory's
+# missions are never scored as another lap count's.
 simulate() {
   local scenario=$1 seed=$2 dir="$work/missions/$1-$2"
-  [[ -f "$dir/observed.csv" ]] && return 0
-  "$pena" simulate --scenario "$scenario" --seed "$seed" --out "$dir" > /dev/null
+  if [[ -f "$dir/observed.csv" ]]; then
+    local had=1
+    [[ -f "$dir/laps" ]] && had=$(< "$dir/laps")
+    [[ "$had" == "$laps" ]] && return 0
+    echo "map-coverage: $dir was simulated with $had lap(s), not $laps: use another --work" >&2
+    return 1
+  fi
+  local lap_option=()
+  ((laps > 1)) && lap_option=(--laps "$laps")
+  "$pena" simulate --scenario "$scenario" --seed "$seed" "${lap_option[@]}" --out "$dir" > /dev/null
+  echo "$laps" > "$dir/laps"
 }
 
 # Maps and scores one mission; writes MAP.eval (and MAP.aligned.eval with --aligned).
@@ -77,7 +96,7 @@ map_one() {
   fi
 }
 
-for m in "${missions[@]}"; do simulate $m; done
+for m in "${missions[@]}"; do simulate $m || exit 1; done
 running=0
 failed=0
 for m in "${missions[@]}"; do
