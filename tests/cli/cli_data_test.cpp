@@ -104,5 +104,42 @@ TEST(CliEval, ReproducesRawOdometryFigureOnMitCsail) {
   EXPECT_LT(mean_m, 1.9);
 }
 
+// The line map's tolerances: a map segment 15 cm off its wall is not covered at the 10 cm,
+// is at 20 cm, and the JSON says which tolerances judged it.
+TEST(CliEval, LineToleranceOptionsWidenTheMatchAndAreReported) {
+  const auto walls = WriteText("walls.csv", "id,x1,y1,x2,y2\n0,0,0,4,0\n");
+  const auto map = WriteText("map.csv", "id,x1,y1,x2,y2\n0,0,0.15,4,0.15\n");
+  const std::string base = "eval --json --lines " + map.string() + " --walls " + walls.string();
+  const PenaRun strict = RunPena(base);
+  ASSERT_EQ(strict.exit_code, 0) << strict.err;
+  EXPECT_EQ(JsonNumber(strict.out, "coverage"), 0.0) << strict.out;
+  EXPECT_EQ(JsonNumber(strict.out, "distance_tolerance_m"), 0.1) << strict.out;
+  EXPECT_EQ(JsonNumber(strict.out, "angle_tolerance_deg"), 10.0) << strict.out;
+  const PenaRun wide = RunPena(base + " --distance-tolerance 0.2 --angle-tolerance 5");
+  ASSERT_EQ(wide.exit_code, 0) << wide.err;
+  EXPECT_NEAR(JsonNumber(wide.out, "coverage"), 1.0, 1e-9) << wide.out;
+  EXPECT_NEAR(JsonNumber(wide.out, "precision"), 1.0, 1e-9) << wide.out;
+  EXPECT_EQ(JsonNumber(wide.out, "distance_tolerance_m"), 0.2) << wide.out;
+  EXPECT_EQ(JsonNumber(wide.out, "angle_tolerance_deg"), 5.0) << wide.out;
+  const PenaRun table = RunPena("eval --lines " + map.string() + " --walls " + walls.string() +
+                                " --distance-tolerance 0.2");
+  EXPECT_NE(table.out.find("wall within 20 cm and 10 deg"), std::string::npos) << table.out;
+}
+
+TEST(CliEval, BadLineToleranceIsAOneLineErrorNamingTheOption) {
+  const auto walls = WriteText("walls_bad.csv", "id,x1,y1,x2,y2\n0,0,0,4,0\n");
+  const std::string base = "eval --lines " + walls.string() + " --walls " + walls.string();
+  for (const char* value : {"0", "-0.1", "inf", "abc"}) {
+    const PenaRun run = RunPena(base + " --distance-tolerance " + value);
+    EXPECT_NE(run.exit_code, 0) << value;
+    const std::string expected =
+        "--distance-tolerance: must be a distance > 0 m, got '" + std::string(value) + "'";
+    EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
+  }
+  const PenaRun angle = RunPena(base + " --angle-tolerance 95");
+  EXPECT_NE(angle.exit_code, 0);
+  EXPECT_NE(angle.err.find("--angle-tolerance"), std::string::npos) << angle.err;
+}
+
 }  // namespace
 }  // namespace pena::testing

@@ -16,13 +16,6 @@
 namespace pena::testing {
 namespace {
 
-// The number after `"key": ` in a JSON text; NaN when absent.
-double JsonNumber(const std::string& json, const std::string& key) {
-  const std::size_t at = json.find("\"" + key + "\": ");
-  if (at == std::string::npos) return std::nan("");
-  return std::stod(json.substr(at + key.size() + 4));
-}
-
 void ExpectMapFiles(const std::filesystem::path& dir) {
   for (const char* name : {"lines.csv", "lines.svg", "grid.pgm", "grid.yaml", "map.png"}) {
     EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -45,6 +46,12 @@ std::string ReadBytes(const std::filesystem::path& path) {
 
 std::filesystem::path Dataset(const std::string& relative) {
   return std::filesystem::path(PENA_SHARED_DIR) / "datasets" / relative;
+}
+
+double JsonNumber(const std::string& json, const std::string& key) {
+  const std::size_t at = json.find("\"" + key + "\": ");
+  if (at == std::string::npos) return std::nan("");
+  return std::stod(json.substr(at + key.size() + 4));
 }
 
 }  // namespace pena::testing

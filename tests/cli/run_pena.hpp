@@ -25,4 +25,7 @@ std::string ReadBytes(const std::filesystem::path& path);
 // Path of a file in ../shared/datasets.
 std::filesystem::path Dataset(const std::string& relative);
 
+// The number after `"key": ` in a JSON text (the first such key); NaN when absent.
+double JsonNumber(const std::string& json, const std::string& key);
+
 }  // namespace pena::testing
