@@ -11,8 +11,8 @@
 # by up to 60 points, docs/slam.md, session 28), so compare variants on the means.
 #
 #   scripts/map-coverage.sh [--build DIR] [--work DIR] [--office "1 2 ..."] [--loop "1 2 ..."]
-#                           [--jobs N] [--aligned] [--laps N] [-- extra pena map options, e.g. --no-slam
-#                           or --set slam.loop_window_m=0.3]
+#                           [--jobs N] [--aligned] [--laps N] [-- extra pena map options,
+#                           e.g. --no-slam or --set slam.loop_window_m=0.3]
 # Defaults: office seeds 1-19, loop170 seeds 1-11, two maps at a time, work dir
 # /tmp/pena-map-coverage (missions in WORK/missions, maps in WORK/maps). About 2 minutes on two
 # cores once the missions exist. `--laps N` walks every route N times (`pena simulate --laps`); the
@@ -73,8 +73,10 @@ simulate() {
   fi
   local lap_option=()
   ((laps > 1)) && lap_option=(--laps "$laps")
-  "$pena" simulate --scenario "$scenario" --seed "$seed" "${lap_option[@]}" --out "$dir" > /dev/null
+  # The marker first: a run stopped half-way leaves no observed.csv and is simulated again.
+  mkdir -p "$dir"
   echo "$laps" > "$dir/laps"
+  "$pena" simulate --scenario "$scenario" --seed "$seed" "${lap_option[@]}" --out "$dir" > /dev/null
 }
 
 # Maps and scores one mission; writes MAP.eval (and MAP.aligned.eval with --aligned).
@@ -96,7 +98,7 @@ map_one() {
   fi
 }
 
-for m in "${missions[@]}"; do simulate $m || exit 1; done
+for m in "${missions[@]}"; do simulate $m; done
 running=0
 failed=0
 for m in "${missions[@]}"; do

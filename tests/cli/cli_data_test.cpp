@@ -3,7 +3,9 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <numbers>
 #include <regex>
 #include <string>
 
@@ -104,41 +106,65 @@ TEST(CliEval, ReproducesRawOdometryFigureOnMitCsail) {
   EXPECT_LT(mean_m, 1.9);
 }
 
-// The line map's tolerances: a map segment 15 cm off its wall is not covered at the 10 cm,
-// is at 20 cm, and the JSON says which tolerances judged it.
-TEST(CliEval, LineToleranceOptionsWidenTheMatchAndAreReported) {
+// The line map's tolerances. A segment 15 cm off its wall is covered at 20 cm, not at the issue's
+// 10 cm; a segment turned 7 deg about a point of its wall is covered at 10 deg, not at 5 deg. The
+// JSON and the table say which tolerances judged the map.
+TEST(CliEval, LineToleranceOptionsChangeTheMatchAndAreReported) {
   const auto walls = WriteText("walls.csv", "id,x1,y1,x2,y2\n0,0,0,4,0\n");
-  const auto map = WriteText("map.csv", "id,x1,y1,x2,y2\n0,0,0.15,4,0.15\n");
-  const std::string base = "eval --json --lines " + map.string() + " --walls " + walls.string();
-  const PenaRun strict = RunPena(base);
+  const auto off = WriteText("off.csv", "id,x1,y1,x2,y2\n0,0,0.15,4,0.15\n");
+  const std::string base = "eval --json --walls " + walls.string() + " --lines ";
+  const PenaRun strict = RunPena(base + off.string());
   ASSERT_EQ(strict.exit_code, 0) << strict.err;
   EXPECT_EQ(JsonNumber(strict.out, "coverage"), 0.0) << strict.out;
   EXPECT_EQ(JsonNumber(strict.out, "distance_tolerance_m"), 0.1) << strict.out;
   EXPECT_EQ(JsonNumber(strict.out, "angle_tolerance_deg"), 10.0) << strict.out;
-  const PenaRun wide = RunPena(base + " --distance-tolerance 0.2 --angle-tolerance 5");
+  const PenaRun wide = RunPena(base + off.string() + " --distance-tolerance 0.2");
   ASSERT_EQ(wide.exit_code, 0) << wide.err;
   EXPECT_NEAR(JsonNumber(wide.out, "coverage"), 1.0, 1e-9) << wide.out;
   EXPECT_NEAR(JsonNumber(wide.out, "precision"), 1.0, 1e-9) << wide.out;
   EXPECT_EQ(JsonNumber(wide.out, "distance_tolerance_m"), 0.2) << wide.out;
-  EXPECT_EQ(JsonNumber(wide.out, "angle_tolerance_deg"), 5.0) << wide.out;
-  const PenaRun table = RunPena("eval --lines " + map.string() + " --walls " + walls.string() +
-                                " --distance-tolerance 0.2");
-  EXPECT_NE(table.out.find("wall within 20 cm and 10 deg"), std::string::npos) << table.out;
+
+  // 1 m at 7 deg through (2, 0): within 10 cm of the wall for 0.82 m of it either way.
+  const double half = 0.5, angle = 7.0 * std::numbers::pi / 180.0;
+  const auto turned = WriteText(
+      "turned.csv", "id,x1,y1,x2,y2\n0," + std::to_string(2 - half * std::cos(angle)) + "," +
+                        std::to_string(-half * std::sin(angle)) + "," +
+                        std::to_string(2 + half * std::cos(angle)) + "," +
+                        std::to_string(half * std::sin(angle)) + "\n");
+  const PenaRun at10 = RunPena(base + turned.string());
+  ASSERT_EQ(at10.exit_code, 0) << at10.err;
+  EXPECT_GT(JsonNumber(at10.out, "coverage"), 0.2) << at10.out;
+  const PenaRun at5 = RunPena(base + turned.string() + " --angle-tolerance 5");
+  ASSERT_EQ(at5.exit_code, 0) << at5.err;
+  EXPECT_EQ(JsonNumber(at5.out, "coverage"), 0.0) << at5.out;
+  EXPECT_EQ(JsonNumber(at5.out, "angle_tolerance_deg"), 5.0) << at5.out;
+
+  const std::string table = "eval --walls " + walls.string() + " --lines " + off.string();
+  const PenaRun defaults = RunPena(table);
+  ASSERT_EQ(defaults.exit_code, 0) << defaults.err;
+  EXPECT_NE(defaults.out.find("wall within 10 cm and 10 deg"), std::string::npos) << defaults.out;
+  const PenaRun widened = RunPena(table + " --distance-tolerance 0.25 --angle-tolerance 12.5");
+  ASSERT_EQ(widened.exit_code, 0) << widened.err;
+  EXPECT_NE(widened.out.find("wall within 25 cm and 12.5 deg"), std::string::npos) << widened.out;
 }
 
-TEST(CliEval, BadLineToleranceIsAOneLineErrorNamingTheOption) {
+TEST(CliEval, BadLineToleranceIsAnErrorNamingTheOptionAndUnit) {
   const auto walls = WriteText("walls_bad.csv", "id,x1,y1,x2,y2\n0,0,0,4,0\n");
   const std::string base = "eval --lines " + walls.string() + " --walls " + walls.string();
-  for (const char* value : {"0", "-0.1", "inf", "abc"}) {
+  for (const char* value : {"0", "-0.1", "inf", "abc", "0.2abc"}) {
     const PenaRun run = RunPena(base + " --distance-tolerance " + value);
     EXPECT_NE(run.exit_code, 0) << value;
     const std::string expected =
         "--distance-tolerance: must be a distance > 0 m, got '" + std::string(value) + "'";
     EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
   }
-  const PenaRun angle = RunPena(base + " --angle-tolerance 95");
-  EXPECT_NE(angle.exit_code, 0);
-  EXPECT_NE(angle.err.find("--angle-tolerance"), std::string::npos) << angle.err;
+  for (const char* value : {"95", "-1", "nan"}) {
+    const PenaRun run = RunPena(base + " --angle-tolerance " + value);
+    EXPECT_NE(run.exit_code, 0) << value;
+    const std::string expected =
+        "--angle-tolerance: must be an angle in [0, 90] deg, got '" + std::string(value) + "'";
+    EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
+  }
 }
 
 }  // namespace

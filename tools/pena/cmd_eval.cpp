@@ -36,7 +36,7 @@ struct EvalArgs {
   // The line map's tolerances (issue 4 judges at 10 cm and 10 deg; wider ones show how far off a
   // map from drifting poses is).
   double distance_tolerance_m = eval::LineMapErrorOptions{}.distance_m;
-  double angle_tolerance_deg = 10.0;
+  double angle_tolerance_deg = eval::LineMapErrorOptions{}.angle_rad * 180.0 / std::numbers::pi;
 };
 
 eval::LineMapErrorOptions LineTolerances(const EvalArgs& args) {
@@ -104,16 +104,30 @@ void PrintTruthTable(const EvalArgs& args, const eval::TrajectoryErrorSummary& s
               Fixed(summary.final_error_percent_of_path, 3).c_str());
 }
 
-// CLI11 check of a distance: finite and > 0. (CLI11's PositiveNumber names DBL_MAX in its
-// message; this one says what is wanted.)
-std::string PositiveMetres(const std::string& value) {
+// The number `value` holds, whole, or NaN.
+double ParsedNumber(const std::string& value) {
   try {
-    const double metres = std::stod(value);
-    if (std::isfinite(metres) && metres > 0.0) return {};
+    std::size_t used = 0;
+    const double number = std::stod(value, &used);
+    if (used == value.size()) return number;
   } catch (const std::exception&) {
-    // not a number: the message below
+    // not a number: NaN
   }
+  return std::nan("");
+}
+
+// CLI11 checks of the line tolerances, with the unit in their messages (CLI11's own PositiveNumber
+// names DBL_MAX, and its Range lets NaN through).
+std::string PositiveMetres(const std::string& value) {
+  const double metres = ParsedNumber(value);
+  if (std::isfinite(metres) && metres > 0.0) return {};
   return "must be a distance > 0 m, got '" + value + "'";
+}
+
+std::string DegreesUpTo90(const std::string& value) {
+  const double degrees = ParsedNumber(value);
+  if (degrees >= 0.0 && degrees <= 90.0) return {};  // false for NaN
+  return "must be an angle in [0, 90] deg, got '" + value + "'";
 }
 
 // A tolerance as the user would write it: 10, not 10.0; 2.5, not 3.
@@ -283,7 +297,7 @@ void AddEvalCommand(CLI::App& app) {
       ->add_option("--angle-tolerance", args->angle_tolerance_deg,
                    "Degrees: coverage also needs the segment's direction within this of the wall's")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 90.0))
+      ->check(CLI::Validator(DegreesUpTo90, "DEGREES 0-90"))
       ->needs(lines);
   command->add_flag("--json", args->json, "Print one JSON object instead of tables");
   command
