@@ -64,15 +64,17 @@ double HeadingErrorAfterTurnRad(const std::vector<OdometryEstimate>& run) {
     if (estimate.stamp_s < kTurnEndS) continue;
     for (const sensors::GroundTruth& truth : entity.truth) {
       if (std::abs(truth.stamp_s - estimate.stamp_s) > 1e-6) continue;
-      worst_rad = std::max(worst_rad, std::abs(geometry::NormalizeAngle(
-                                          estimate.world_from_body.theta_rad - truth.world_from_body.theta_rad)));
+      const double error_rad = geometry::NormalizeAngle(estimate.world_from_body.theta_rad -
+                                                        truth.world_from_body.theta_rad);
+      worst_rad = std::max(worst_rad, std::abs(error_rad));
     }
   }
   return worst_rad;
 }
 
 TEST(GyroRefusal, AliasedCornerMatchesDoNotTurnTheWalkerWithThickWalls) {
-  const std::vector<OdometryEstimate> run = Replay(PeoplesOptions(LaserOdometryOptions{}.prior_gate_refuse_gyro_rad));
+  const double refuse_rad = LaserOdometryOptions{}.prior_gate_refuse_gyro_rad;
+  const std::vector<OdometryEstimate> run = Replay(PeoplesOptions(refuse_rad));
   int refused = 0;
   for (const OdometryEstimate& estimate : run) {
     refused += estimate.refused ? 1 : 0;

@@ -138,17 +138,16 @@ std::string Compact(double value) {
 }
 
 void PrintLineTable(const EvalArgs& args, const eval::LineMapErrorSummary& summary) {
-  const eval::LineMapErrorOptions tolerances = LineTolerances(args);
   std::printf("line map %s: %zu segments, %s m; walls %s: %zu, %s m\n", args.lines.c_str(),
               summary.map_segments, Fixed(summary.map_length_m, 2).c_str(), args.walls.c_str(),
               summary.walls, Fixed(summary.wall_length_m, 2).c_str());
   std::printf("  %-46s %8s %%\n",
-              ("coverage (wall within " + Compact(tolerances.distance_m * 100) + " cm and " +
+              ("coverage (wall within " + Compact(args.distance_tolerance_m * 100) + " cm and " +
                Compact(args.angle_tolerance_deg) + " deg)")
                   .c_str(),
               Fixed(summary.coverage * 100.0, 2).c_str());
   std::printf("  %-46s %8s %%\n",
-              ("precision (map within " + Compact(tolerances.distance_m * 100) + " cm of a wall)")
+              ("precision (map within " + Compact(args.distance_tolerance_m * 100) + " cm of a wall)")
                   .c_str(),
               Fixed(summary.precision * 100.0, 2).c_str());
   std::printf("  %-46s %8s\n", "fragmentation (map segments per wall)",

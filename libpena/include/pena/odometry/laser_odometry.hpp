@@ -339,7 +339,8 @@ struct OdometryEstimate {
   bool reference_changed = false;    // this scan became a keyframe (map localisation runs here)
   bool wide_search = false;          // the window was larger than the paper's
   bool gated = false;  // matched far from the motion prior: not a keyframe (prior-consistency gate)
-  bool refused = false;  // gated and refused against the gyro + compass heading: output at the prior
+  // gated and refused against the gyro + compass heading: output at the prior
+  bool refused = false;
   bool stale = false;  // repeats an earlier scan (delivered late): not a keyframe
 };
 
@@ -348,7 +349,7 @@ struct OdometryCounts {
   long scans = 0, matched = 0, degenerate = 0, failed = 0, no_points = 0, keyframes = 0;
   long wide_searches = 0;
   long gated = 0;            // matches outside the prior-consistency gate (not made keyframes)
-  long refused = 0;          // of those, refused against the gyro + compass (prior_gate_refuse_gyro_rad)
+  long refused = 0;          // of those, refused against the gyro (prior_gate_refuse_gyro_rad)
   long stale = 0;            // scans repeating an earlier scan (not made keyframes)
   long turn_held = 0;        // poor matches in fast turns not made keyframes (keyframe_turn_*)
   long pace_held = 0;        // matches that kept the prior along the walk (pace_check_*)
