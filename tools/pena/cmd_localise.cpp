@@ -178,7 +178,7 @@ void AddLocaliseCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "localise", "Localise a log on an a priori plan (virtual scan matching, global start)");
   command->add_option("--log", args->log, "Input log: CARMEN (.clf, plain or gzip) or PeNa log")->required();
-  command->add_option("--map", args->map, "A priori plan: line CSV, SVG or DXF (docs/io-formats.md, Plans)")->required();
+  command->add_option("--map", args->map, "A priori plan: line CSV, SVG or DXF (docs/formats.md, Plans)")->required();
   command->add_option("--out", args->out, "Output directory (created if missing)")->required();
   command->add_flag("--global", args->global, "Unknown start: localise the first scans on the whole plan");
   command->add_flag("--every-scan", args->every_scan,

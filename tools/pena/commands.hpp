@@ -8,7 +8,7 @@
 namespace pena::cli {
 
 // --carmen-sweep and --carmen-interlace, for the tools that run the odometry chain
-// (docs/io-formats.md, "Sweep time").
+// (docs/formats.md, "Sweep time").
 void AddCarmenSweepOptions(CLI::App& command, io::ReadOptions& read);
 
 void AddInfoCommand(CLI::App& app);      // pena info FILE

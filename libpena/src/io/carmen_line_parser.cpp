@@ -13,7 +13,7 @@ namespace {
 
 using Fields = std::vector<std::string_view>;
 
-// Field counts around the variable parts of each message (see docs/io-formats.md).
+// Field counts around the variable parts of each message (see docs/formats.md).
 constexpr std::size_t kFlaserFixedFields = 11;   // type n [ranges] x y th ox oy oth ts host lts
 constexpr std::size_t kOdomFields = 10;          // type x y th tv rv accel ts host lts
 constexpr std::size_t kLaserHeaderFields = 9;    // type laser_type start fov res max acc rem n

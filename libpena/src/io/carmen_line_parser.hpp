@@ -1,5 +1,5 @@
 #pragma once
-// Private: turns one CARMEN log line into a sensor record (layouts in docs/io-formats.md).
+// Private: turns one CARMEN log line into a sensor record (layouts in docs/formats.md).
 
 #include <optional>
 #include <stdexcept>
@@ -28,7 +28,7 @@ struct CarmenMessage {
 // throws CarmenLineError for a malformed line of a known type.
 std::optional<CarmenMessage> ParseCarmenLine(std::string_view line, const ReadOptions& options);
 
-// Beam geometry of an n-beam FLASER scan (FLASER does not state it; see docs/io-formats.md).
+// Beam geometry of an n-beam FLASER scan (FLASER does not state it; see docs/formats.md).
 sensors::LaserGeometry FlaserGeometry(std::size_t beam_count, const ReadOptions& options);
 // The sweeps interleaved in a CARMEN scan of this beam spacing (ReadOptions::carmen_interlace).
 int CarmenInterlace(double angle_increment_rad, const ReadOptions& options);

@@ -15,7 +15,7 @@ namespace {
 
 // Scans may step back by up to this much within one message type (dropped and counted) before it
 // is an error: the
-// radish intel-corrected log has 4 scans up to 0.86 s early (docs/io-formats.md, "Timestamps").
+// radish intel-corrected log has 4 scans up to 0.86 s early (docs/formats.md, "Timestamps").
 constexpr double kScanStepBackTolerance_s = 1.0;
 
 const ReadOptions& Validated(const ReadOptions& options) {

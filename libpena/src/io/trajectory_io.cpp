@@ -1,4 +1,4 @@
-// TUM trajectories and Freiburg relations as text (docs/io-formats.md).
+// TUM trajectories and Freiburg relations as text (docs/formats.md).
 #include "pena/io/trajectory_io.hpp"
 
 #include <cmath>

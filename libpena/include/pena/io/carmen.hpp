@@ -1,6 +1,6 @@
 #pragma once
 // CARMEN logs: reader (FLASER, ODOM, ROBOTLASER1, RAWLASER1-4; plain or gzip) and writer
-// (FLASER, ODOM). Line formats in docs/io-formats.md.
+// (FLASER, ODOM). Line formats in docs/formats.md.
 
 #include <filesystem>
 #include <memory>

@@ -18,7 +18,7 @@ struct ReadOptions {
   bool skip_malformed = false;
   // CARMEN FLASER lines do not state the maximum range; ranges at or above it are no-returns.
   // 50 m fits every dataset log (aces codes no-returns as 50, intel/mit as 81.8-81.9, no real
-  // return exceeds 42.4 m) except orebro (codes 32.76: use 32.7); see docs/io-formats.md.
+  // return exceeds 42.4 m) except orebro (codes 32.76: use 32.7); see docs/formats.md.
   double carmen_max_range_m = 50.0;
   // CARMEN FLASER lines with 180 beams: true spreads them over 180 deg (180/179 deg steps),
   // false uses 1 deg steps from -90 deg. docs/evaluation.md shows 1 deg fits.

@@ -1,6 +1,6 @@
 #pragma once
 // A priori plans (fire brigades' building plans) read as wall segments: line CSV, SVG or DXF
-// (docs/io-formats.md, "Plans").
+// (docs/formats.md, "Plans").
 
 #include <filesystem>
 #include <vector>

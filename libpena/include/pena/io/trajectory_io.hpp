@@ -1,5 +1,5 @@
 #pragma once
-// Trajectories as TUM text and relations as Freiburg .relations text (docs/io-formats.md).
+// Trajectories as TUM text and relations as Freiburg .relations text (docs/formats.md).
 
 #include <filesystem>
 #include <vector>
