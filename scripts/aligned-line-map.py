@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A line map moved by the rigid fit of its trajectory onto the truth (docs/slam.md, session 26).
+"""A line map moved by the rigid fit of its trajectory onto the truth (docs/slam.md).
 
 `pena eval --lines` scores a map in the mission frame, so a map drawn consistently but shifted as
 a whole (the odometry's error before the first loop closure) loses the walls it shifted. This

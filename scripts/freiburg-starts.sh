@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Issue 3's figure of merit: each Freiburg log run from its logged start frame and from the two
-# start frames moved by about 1 cm (docs/odometry.md, seventh round: X and Y), scored with
+# The laser odometry's figure of merit on the Freiburg logs: each log run from its logged start
+# frame and from the two start frames moved by about 1 cm (X and Y), scored with
 # `pena eval --relations`; prints each frame's mean translational relation error and their mean.
-# `--starts 5` adds Z and W, 1 cm the other way (twelfth round b): single runs are chaotic (1 cm
-# changes a log's figure by up to 0.4 m), so decisions take the five-frame mean.
-# `--starts 25` (session 26): a 5 x 5 grid of start frames, x and y -2..+2 cm around the logged
-# start; prints mean, median, range and how many are below the log's target. Five frames proved
-# too few (intel: 0.174 m on five, 0.236 m mean on 25; docs/odometry.md, "Scan deskew").
+# `--starts 5` adds Z and W, 1 cm the other way. Single runs are chaotic (1 cm changes a log's
+# figure by up to 0.4 m), so decisions take a mean over frames.
+# `--starts 25`: a 5 x 5 grid of start frames, x and y -2..+2 cm around the logged start; prints
+# mean, median, range and how many are below the log's target. Five frames are too few on these
+# logs (docs/odometry.md, "Figures").
 # One run at a time (a run takes 10-60 s; 25 intel runs about 20 min).
 #
 #   scripts/freiburg-starts.sh [--build DIR] [--work DIR] [--logs "intel aces mit-csail"]

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The link experiments of issue 7 (docs/link-experiments.md), one command, as root:
+# The link experiments (docs/link-experiments.md), one command, as root:
 #   sudo scripts/link-experiments.sh [--quick] [--out DIR] [--build DIR] [--jobs N] [--no-docs]
 #        [--modes "gateway dds"] [--skip-existing]
 # Full: the `team` mission replayed in real time through a radio link shaped to 9.6, 28.8, 64

@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
-# Issue 4's mapping figure from odometry poses over many simulated missions: each office and
+# The mapping figure from odometry poses over many simulated missions: each office and
 # loop170 seed is simulated (once; kept in the work directory), mapped with `pena map` (odometry
 # + SLAM unless the extra options say otherwise) and scored with `pena eval --lines` against the
 # walls its laser saw. Prints each mission's coverage, precision, fragmentation and trajectory RMSE
-# (against truth.tum; coverage follows it, docs/slam.md, session 30), and the means over office,
-# loop170, the issue's headline set (both scenarios, seeds 1-8) and all. `--aligned` adds the
+# (against truth.tum; coverage follows it, docs/slam.md), and the means over office,
+# loop170, the headline set (both scenarios, seeds 1-8) and all. `--aligned` adds the
 # coverage left once the map is moved by the rigid fit of its trajectory onto the truth
 # (scripts/aligned-line-map.py): the map's own inconsistency, without the shift.
 # Single maps are chaotic (a change that leaves the 30-map mean within a point moves single maps
-# by up to 60 points, docs/slam.md, session 28), so compare variants on the means.
+# by up to 60 points, docs/slam.md), so compare variants on the means.
 #
 #   scripts/map-coverage.sh [--build DIR] [--work DIR] [--office "1 2 ..."] [--loop "1 2 ..."]
 #                           [--jobs N] [--aligned] [--laps N] [-- extra pena map options,
@@ -16,7 +16,7 @@
 # Defaults: office seeds 1-19, loop170 seeds 1-11, two maps at a time, work dir
 # /tmp/pena-map-coverage (missions in WORK/missions, maps in WORK/maps). About 2 minutes on two
 # cores once the missions exist. `--laps N` walks every route N times (`pena simulate --laps`); the
-# work dir then defaults to /tmp/pena-map-coverage-lapsN (docs/slam.md, session 32).
+# work dir then defaults to /tmp/pena-map-coverage-lapsN (docs/slam.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The people's laser odometry over many simulated missions, for deciding a people default
-# (docs/odometry.md, issue 3): per entity the translation RMSE, the final error in % of the path
+# (docs/odometry.md): per entity the translation RMSE, the final error in % of the path
 # and the heading RMSE against truth.tum, then the means and how many runs end over 1 %.
 #
 #   scripts/people-odometry-sweep.sh [--build DIR] [--work DIR] [--tag NAME]
@@ -10,7 +10,7 @@
 # PENA_MISSIONS to read them elsewhere). Extra seeds: `pena simulate --scenario office --seed 6
 # --out DIR/office6`, then pass "DIR/office6/ff1" in --entities. One job at a time (2-20 s each).
 # Prints "mission/entity rmse_m final_% heading_deg" rows, then "mean ..." and "over1% N of M";
-# runs are kept in WORK/TAG/<mission>-<entity>. Example, the eleventh round's option set A:
+# runs are kept in WORK/TAG/<mission>-<entity>. Example, an option set A:
 #   scripts/people-odometry-sweep.sh --tag A -- --set dead_reckoning.stride_interpolation.enabled=0 \
 #       --set dead_reckoning.max_stride_period_s=1.5 --set keyframe_turn_rate_rad_s=0.5236
 set -euo pipefail

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Where a run's relation error comes from (docs/odometry.md, issue 3 ninth round).
+"""Where a run's relation error comes from (docs/odometry.md).
 
 scripts/relation-errors.py RUN_DIR LOG.clf.gz LOG.relations [--steps N]
 

@@ -41,8 +41,7 @@ struct EntityServiceOptions {
   LiveSensorOptions live;
   io::ReadOptions read;
   // libpena's defaults: a person's strides are spread over their scans (pipeline.spread_strides,
-  // on since session 19, when the odometry's pace check removed the corridor slide that kept it
-  // off; docs/services.md, "Stride spreading in the service").
+  // on; docs/services.md, "Stride spreading in the service").
   pipeline::EntityPipelineOptions pipeline;
   DdsOptions dds;
   std::string log_level = "info";

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # LinkExperiments.Quick9k6GatewayMeetsAcceptance: runs `scripts/link-experiments.sh --quick
-# --modes gateway` and checks issue 7's acceptance at 9.6 kbit/s with 4 entities: pose age p99
+# --modes gateway` and checks the link acceptance at 9.6 kbit/s with 4 entities: pose age p99
 # at the command post < 2 s, the post's global map equals fusion's final map and converged
 # < 60 s after its last change, and no map version was skipped at the post through the 30 s
 # outage (every version applied by delta). Exit 77 (skip) without root, ip or tc.

@@ -1,4 +1,4 @@
-// Global localisation on the simulated `office` mission (issue 5 acceptance): the firefighter's
+// Global localisation on the simulated `office` mission (its acceptance figure): the firefighter's
 // log is started at random scans whose true pose is in the mapped corridor (y 13-15 m,
 // x 4.5-41.5 m), with no start pose, and run through LocalisationChain with global_start on the
 // partial, partly wrong a priori plan until it anchors. Prints how many anchor within 0.3 m and
@@ -13,7 +13,7 @@
 // search and the odometry's starting heading).
 // The headline runs each start until it anchors or the log ends (then the leader is the answer);
 // beside it, the same starts cut at 30 m of walk (an unanchored start answered by the leader
-// then), the figure of sessions 10-15. The count of starts the log leaves less than 1 m / 3 m of
+// then). The count of starts the log leaves less than 1 m / 3 m of
 // walk after is printed. The log goes in as `pena localise` takes it: a person's strides spread
 // over the scans inside them (PENA_BENCH_SET=odometry.stride_interpolation.enabled=0: as logged).
 #include <algorithm>
@@ -129,7 +129,7 @@ void ApplySettings(localisation::LocalisationChainOptions& chain) {
     else if (name == "compass_tolerance_deg") chain.compass_tolerance_rad = value * kDeg;
     // The whole-plan localiser underneath (beam agreement, docs/localisation.md).
     else if (name == "agreement_tolerance_m") chain.global.agreement_tolerance_m = value;
-    // The odometry underneath: the people's option set W (docs/odometry.md, twelfth round d4).
+    // The odometry underneath (docs/odometry.md).
     else if (name == "odometry.max_stride_period_s") chain.odometry.dead_reckoning.max_stride_period_s = value;
     else if (name == "odometry.stride_interpolation.enabled") chain.odometry.dead_reckoning.stride_interpolation.enabled = value != 0.0;
     else if (name == "odometry.stopped_stride_fraction") chain.odometry.dead_reckoning.stopped_stride_fraction = value;

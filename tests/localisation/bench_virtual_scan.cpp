@@ -1,6 +1,6 @@
 // Virtual scans per second on a building-like plan of 2,024 segments (22 x 22 rooms of 4 m with a
 // door in every wall), 361 beams over 180 deg, 30 m range, from random poses inside the rooms.
-// Acceptance (issue 5): at least 20,000 scans/s on one core. Read "items_per_second".
+// Acceptance: at least 20,000 scans/s on one core. Read "items_per_second".
 #include <benchmark/benchmark.h>
 
 #include <numbers>

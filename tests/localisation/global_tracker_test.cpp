@@ -121,7 +121,7 @@ WalkResult WalkIntoTheWestWing(const GlobalTrackerOptions& options) {
 }
 
 // The tracker does not decide this walk at all (rather than wrongly), with the defaults and
-// without the pairwise freeze (the default until session 14): without it the look-alike 6 m east
+// without the pairwise freeze: without it the look-alike 6 m east
 // stays within the margin until the walk is past the plan's end wall, and then the true place's
 // path crosses that wall. (Office's real log, with odometry noise, is decided wrongly at times:
 // docs/localisation.md.)
@@ -147,7 +147,7 @@ WalkResult WalkIntoTheWestWingAndBack(const GlobalTrackerOptions& options) {
 // carries it. Without the freeze the look-alike 6 m east is decided as the walker comes back
 // (about x 3, docs/localisation.md).
 TEST(GlobalTracker, PairwiseFreezeDecidesTheTruePoseAfterTheUnmappedWestWing) {
-  GlobalTrackerOptions options;  // the freeze alone (session 11), ranked by the smallest lead
+  GlobalTrackerOptions options;  // the freeze alone, ranked by the smallest lead
   options.freeze_history_keyframes = 48;
   options.boundary_fraction = 0.1;
   options.freeze_ranking = 0;
@@ -236,13 +236,13 @@ TEST(GlobalTracker, DecidesNothingOnAScanThatSeesLittle) {
   const auto [at_default, error_default_m] = FirstCorridorDecision(options, thin);
   EXPECT_EQ(at_default, kThinKeyframes + 16);
   EXPECT_LT(error_default_m, 0.1);
-  options.min_decide_return_keyframes = 1;  // the latest keyframe alone (session 15)
+  options.min_decide_return_keyframes = 1;  // the latest keyframe alone
   const auto [at_latest, error_latest_m] = FirstCorridorDecision(options, thin);
   EXPECT_GT(at_latest, kThinKeyframes);
   EXPECT_LT(at_latest, at_default);
   EXPECT_LT(error_latest_m, 0.1);
   options.min_decide_return_fraction = 0.0;
-  options.min_travel_m = 3.0;  // the default until session 24: decided within the thin keyframes
+  options.min_travel_m = 3.0;  // a shorter walk: decided within the thin keyframes
   const auto [at_any, error_any_m] = FirstCorridorDecision(options, thin);
   EXPECT_GT(at_any, 0);
   EXPECT_LE(at_any, kThinKeyframes);

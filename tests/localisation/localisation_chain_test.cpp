@@ -119,10 +119,8 @@ TEST(LocalisationChain, RobotWithoutCompassIsUnchangedByTheCompassTolerance) {
 
 // The walk from the entrance west along the corridor anchors on the true pose with the compass
 // start (a plain corridor start: the bound must not lose what every heading finds). From 2 s:
-// since the simulated stride sensor reports the step that ends at a stand (session 21), the
-// start at 3 s that this test used walks into a 2 s stand at x 36.9 and anchors on the look-alike
-// 6 m along in front of the archive (bench_global_localisation's misses #45, #74, #92, #96),
-// where without the bound it anchors right 18 m later; from 6.5 s it is the other way round.
+// a start at 3 s walks into a 2 s stand at x 36.9 and anchors on the look-alike 6 m along in
+// front of the archive (as some of bench_global_localisation's misses do).
 TEST(LocalisationChain, CompassStartAnchorsTheWalkFromTheEntrance) {
   const sim::EntityRecording& entity = OfficeMission().entities.front();
   const Anchor anchor = RunUntilAnchored(UnknownStart(30.0 * kDeg), entity.kind, StartAt(entity, 2.0), 400);
@@ -136,9 +134,8 @@ TEST(LocalisationChain, CompassStartAnchorsTheWalkFromTheEntrance) {
 // 40.25 s, bench_global_localisation's start #89): the true place agrees with nothing there, and a
 // whole-plan search finds the north-east room (x 34-42, y 15-22), which looks like the annex room
 // the walker is in. Its evidence on the keyframes before it was found is the odometry's replay.
-// Followed over 2 keyframes of its own (the default until session 16) it is decided, 25 m off;
-// over min_keyframes (6, the default now) it is refuted first, and the walk is anchored right
-// once back in the corridor.
+// Followed over 2 keyframes of its own it would be decided, 25 m off; over min_keyframes (6, the
+// default) it is refuted first, and the walk is anchored right once back in the corridor.
 TEST(LocalisationChain, AWalkIntoTheAnnexIsNotDecidedOnTheNorthEastRoom) {
   const sim::EntityRecording& entity = OfficeMission().entities.front();
   const std::size_t start = StartAt(entity, 40.25);

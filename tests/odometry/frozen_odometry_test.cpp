@@ -99,7 +99,7 @@ TEST(FrozenOdometry, FrozenScansArePredictedAtConstantVelocityAndTheCatchUpIsNot
   EXPECT_LT(std::abs(end_error_rad), 2.0 * kDeg);
 }
 
-// A robot's defaults (session 11: 1 deg, 0.15 m) handle the freeze too.
+// A robot's defaults (1 deg, 0.15 m) handle the freeze too.
 TEST(FrozenOdometry, TheRobotDefaultsHandleAFreeze) {
   const std::size_t first = FastestTurnStart();
   const std::vector<OdometryEstimate> estimates = Replay(WithFrozenOdometry(first), {});
@@ -108,7 +108,7 @@ TEST(FrozenOdometry, TheRobotDefaultsHandleAFreeze) {
 }
 
 // local_map_place_fill_frozen_scans: while frozen and a few scans after, the place choice's
-// free slots go to the latest keyframes (session 12). The runs agree up to the freeze, differ
+// free slots go to the latest keyframes. The runs agree up to the freeze, differ
 // in it (the rule acted), and the priors and the end stay as good as with the defaults.
 TEST(FrozenOdometry, TheReferenceIsFilledWhileFrozen) {
   const std::size_t first = FastestTurnStart();
@@ -128,7 +128,7 @@ TEST(FrozenOdometry, TheReferenceIsFilledWhileFrozen) {
   bool acted = false;
   for (std::size_t i = first; i < first + kFrozenScans + 5; ++i) acted = acted || !same(i);
   EXPECT_TRUE(acted);
-  // A robot's default since session 12 (five Freiburg start frames, docs/odometry.md).
+  // A robot's default (chosen on the Freiburg start frames, docs/odometry.md).
   const std::vector<OdometryEstimate> defaults = Replay(records, {});
   ASSERT_EQ(defaults.size(), estimates.size());
   for (std::size_t i = 0; i < defaults.size(); ++i) {

@@ -1,4 +1,4 @@
-// The prior gate's confirmation for people (issue 3, sixth round continued): gated matches count
+// The prior gate's confirmation for people: gated matches count
 // towards trusting the scans only while their deviations from the prior agree with each other.
 #include "../../libpena/src/odometry/gate_confirmation.hpp"
 

@@ -173,7 +173,7 @@ TEST(LaserOdometry, PersonInACorridorHasNoStrideSawTooth) {
   matched.dead_reckoning.max_stride_period_s = 1.5;
   LaserOdometryOptions slide = matched;
   slide.degenerate_slide_ratio = 0.2;  // on the raw stride stream the auto default is off
-  slide.degenerate_slide_backward_only = false;  // the check as it was measured here (session 13)
+  slide.degenerate_slide_backward_only = false;  // both ways: the matches here slide both ways
   slide.degenerate_max_slide_m = 0.1;
   slide.degenerate_slide_max_across_m = 0.0;
   slide.degenerate_slide_prior_agreed_m = 0.0;
@@ -182,7 +182,7 @@ TEST(LaserOdometry, PersonInACorridorHasNoStrideSawTooth) {
   EXPECT_LT(slide_m, 0.6 * matched_m) << "slide check " << slide_m << " m, without " << matched_m << " m";
   // Counting only the slides back against the direction of travel (degenerate_slide_backward_only)
   // keeps part of that: 0.15 m against 0.19 m without and 0.11 m both ways (the matches here are
-  // pulled both ways; measured on the missions in docs/odometry.md, twelfth round d5).
+  // pulled both ways).
   LaserOdometryOptions backward = slide;
   backward.degenerate_slide_backward_only = true;
   const double backward_m = AlongTrackJitterM(person, Replay(person, backward));
@@ -329,7 +329,7 @@ void ExpectRobotUnchanged(const LaserOdometryOptions& on, long OdometryCounts::*
   }
 }
 
-// drop_walker_fixed_points (thirteenth round): people's dead reckoning only; a robot's run is
+// drop_walker_fixed_points: people's dead reckoning only; a robot's run is
 // unchanged, and the walkers' bends give it something to drop.
 TEST(LaserOdometry, DropsWalkerFixedReturnsForPeopleOnly) {
   LaserOdometryOptions on;

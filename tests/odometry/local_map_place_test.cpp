@@ -217,8 +217,8 @@ bool Same(const std::vector<geometry::Pose2>& a, const std::vector<geometry::Pos
   return true;
 }
 
-// The defaults: a robot's reference is chosen by place from a pool of 40 (session 11, the
-// Freiburg logs), a person's by recency as before.
+// The defaults: a robot's reference is chosen by place from a pool of 40 (chosen on the
+// Freiburg logs), a person's by recency.
 TEST(PlaceChoice, RobotsChooseByPlaceAndPeopleByRecencyByDefault) {
   LaserOdometryOptions place;
   place.local_map_pool_keyframes = 40;
@@ -255,7 +255,7 @@ TEST(PlaceChoice, APoorMatchIsSearchedAgainAgainstTheFilledReference) {
   const geometry::Pose2& end = again.back().world_from_body;
   EXPECT_LT(std::hypot(truth.x_m - end.x_m, truth.y_m - end.y_m), 0.5);
   EXPECT_LT(std::abs(geometry::NormalizeAngle(truth.theta_rad - end.theta_rad)), 2.0 * kDeg);
-  // On by default since session 12, at keyframe_min_score (the Freiburg five-start means).
+  // On by default, at keyframe_min_score (chosen on the Freiburg start-frame means).
   EXPECT_EQ(LaserOdometryOptions{}.local_map_place_fill_below_score,
             LaserOdometryOptions{}.keyframe_min_score);
 }

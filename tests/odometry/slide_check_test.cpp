@@ -1,4 +1,4 @@
-// The people's slide check on simulated missions (session 24, docs/odometry.md): between
+// The people's slide check on simulated missions (docs/odometry.md, "Estimator"): between
 // keyframes, weakly constrained matches that fall back against the walk keep the spread strides'
 // prior along the corridor, and a prior that a constraining match has just found off (a step
 // back) is not kept.
@@ -99,7 +99,7 @@ double MaxDifferenceM(const std::vector<OdometryEstimate>& a, const std::vector<
   return max_m;
 }
 
-// `pena map` runs people with the long reference (kAutoLocalMapKeyframes, session 28): auto is
+// `pena map` runs people with the long reference (kAutoLocalMapKeyframes): auto is
 // the long one for a person, and it is a different run from the short default's.
 TEST(LocalMapLength, AutoIsTheLongReferenceForPeopleAndBelowItIsRefusedNamingTheField) {
   const sim::EntityRecording walker = Office(5);

@@ -1,7 +1,7 @@
-// Entity-side map localisation (issue 6, pena-entity "map localisation when a plan is loaded";
-// paper section 4.2): a firefighter whose compass is disturbed drifts on its own laser odometry;
-// with the a priori plan set, EntityPipeline matches a virtual scan of the plan at every
-// reference change and its published pose stays close to the truth.
+// Entity-side map localisation (pena-entity with a plan loaded; paper section 4.2): a firefighter
+// whose compass is disturbed drifts on its own laser odometry; with the a priori plan set,
+// EntityPipeline matches a virtual scan of the plan at every reference change and its published
+// pose stays close to the truth.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -79,7 +79,7 @@ TEST(ConfigLoader, BadValuesAreNamed) {
   EXPECT_THROW(LoadTextConfig<config::EntityConfig>("/nonexistent/entity.conf"), io::InputError);
 }
 
-// On by default since session 19 (docs/services.md, "Stride spreading in the service").
+// On by default (docs/services.md, "Stride spreading in the service").
 TEST(ConfigLoader, StrideSpreadingIsOnByDefaultCanBeTurnedOffAndItsHoldIsChecked) {
   const auto path = Write("spread.conf", "input: \"x\"\n");
   EntityServiceOptions options =

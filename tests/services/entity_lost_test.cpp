@@ -1,4 +1,4 @@
-// An entity that goes silent is marked lost and its data kept (issue 6, fault tests): pena-fusion
+// An entity that goes silent is marked lost and its data kept (fault test): pena-fusion
 // and pena-entity as real processes on loopback DDS; the entity is killed with SIGKILL (no
 // "finished" status, no goodbye) after fusion merged some of its walls. Fusion must log it
 // active -> lost within silent_after_s plus a tick, and its global map must still hold the

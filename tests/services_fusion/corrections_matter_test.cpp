@@ -1,4 +1,4 @@
-// Corrections matter (issue 6): a firefighter whose heading sensors are disturbed drifts; with
+// Corrections matter: a firefighter whose heading sensors are disturbed drifts; with
 // pena-fusion's virtual-scan corrections (against the global map, here the a priori plan) its RMS
 // position error is at most half of its own laser odometry's. One pena-fusion and one pena-entity
 // on loopback DDS. Both figures come from the same run: the entity's published world_from_body
@@ -86,9 +86,8 @@ TEST(FusionProcess, CorrectionsHalveTheErrorOfAnEntityWhoseHeadingIsDisturbed) {
   const double without_m = Rmse(run / "fusion" / "poses" / "ff1_odom.tum", truth);
   std::printf("[ figures  ] ff1 (disturbed heading): RMS position error %.3f m with corrections, "
               "%.3f m without\n", with_m, without_m);
-  // The disturbance must make the odometry drift for halving to mean anything. With the strides
-  // spread and the pace check (session 19) the odometry alone drifts 0.40 m here (0.91 m with
-  // the strides at their reports); corrections bring it to 0.15 m.
+  // The disturbance must make the odometry drift for halving to mean anything: the odometry alone
+  // drifts 0.40 m here, and corrections bring it to 0.15 m.
   EXPECT_GT(without_m, 0.3) << "the disturbance should make the odometry drift";
   EXPECT_LE(with_m, 0.5 * without_m);
 }

@@ -1,4 +1,4 @@
-// pena-fusion with four pena-entity processes on loopback DDS (the team demo, issue 6): the global
+// pena-fusion with four pena-entity processes on loopback DDS (the team demo): the global
 // map covers the walls the entities saw; a late joiner gets the whole global map within 2 s; a
 // fusion killed with kill -9 mid-mission and restarted ends with the same map, versions
 // contiguous; a bad config exits non-zero naming file and line. Every participant uses
@@ -199,12 +199,9 @@ TEST(FusionProcess, TeamGlobalMapCoversObservedWallsAndLateJoinerGetsItWithinTwo
               "%.2f segments per wall; late joiner %.3f s\n",
               score.map_segments, 100 * score.coverage, 100 * score.precision,
               score.fragmentation, late_s);
-  // Issue 6: coverage >= 90 %, precision >= 95 %, <= 1.5 segments per wall. With the fusion's
-  // mission-time order the figures are the same on every run (91.8 %, 96.3 %, 1.06 on
-  // 2026-12-02). Before the lockstep these varied with the load (84-93 % / 83-97 % over twelve CI runs, 2026-12-01):
-  // the correction worker fell behind and dropped or delayed attempts, so the entities' maps
-  // differed; one run also lost ff2 altogether (DDS discovery: participant ids >= 4 were not
-  // announced to before maxInitialPeersRange was raised in deploy/dds/pena-loopback.xml).
+  // The targets: coverage >= 90 %, precision >= 95 %, <= 1.5 segments per wall. With the fusion's
+  // mission-time order (lockstep) the figures are the same on every run whatever the load; free
+  // running, the correction worker falls behind under load and the entities' maps differ.
   EXPECT_GE(score.coverage, 0.90);
   EXPECT_GE(score.precision, 0.95);
   EXPECT_LE(score.fragmentation, 1.5);

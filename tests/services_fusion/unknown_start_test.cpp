@@ -1,4 +1,4 @@
-// An entity whose start pose is unknown (issue 6): pena-entity --unknown-start runs its chain in
+// An entity whose start pose is unknown: pena-entity --unknown-start runs its chain in
 // its own frame (its first pose is the origin, not the robot's true start at (28.5, 4.5) facing
 // north in the team building) and says so in its status; pena-fusion places it by matching its
 // local map to the global map (the a priori plan and two firefighters with known starts),

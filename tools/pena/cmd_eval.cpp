@@ -33,8 +33,8 @@ struct EvalArgs {
   bool align = false;
   bool json = false;
   double stamp_tolerance_s = eval::kDefaultStampTolerance_s;
-  // The line map's tolerances (issue 4 judges at 10 cm and 10 deg; wider ones show how far off a
-  // map from drifting poses is).
+  // The line map's tolerances (the targets are judged at 10 cm and 10 deg; wider ones show how far
+  // off a map from drifting poses is).
   double distance_tolerance_m = eval::LineMapErrorOptions{}.distance_m;
   double angle_tolerance_deg = eval::LineMapErrorOptions{}.angle_rad * 180.0 / std::numbers::pi;
 };

@@ -1,5 +1,5 @@
 #pragma once
-// The a priori plan under the observed walls (issue 6): observations are trusted over the plan,
+// The a priori plan under the observed walls: observations are trusted over the plan,
 // which is partial and partly wrong. Where an observed wall lies along a plan wall the observed
 // geometry is published (carrying the plan's key when it confirms it); the plan wall's remainder
 // is published as plan-only pieces. Internal to the fusion module.

@@ -29,8 +29,8 @@ struct HumanDeadReckoningOptions {
   double max_stride_period_s = 0.0;
   // Without that extrapolation the position lags the walker by the stride in progress, and the
   // prior's covariance holds it instead (PendingCovarianceAt): the walker is taken to be up to
-  // this pace ahead since the last report (at least the last stride's pace; the paper: "the normal
-  // speed of a human is around 1 m/s"), at most the last stride (before the first, one second).
+  // this pace ahead since the last report (at least the last stride's pace; the paper gives 1 m/s
+  // as the normal walking speed), at most the last stride (before the first, one second).
   // 0 leaves the stride in progress out of the covariance.
   double unreported_pace_m_s = 1.0;
   // A walker whose next report is this many stride periods overdue has stopped, most often part of

@@ -1,6 +1,6 @@
 #pragma once
 // A line map judged against the true walls the laser saw (the simulator's observed.csv): coverage,
-// precision and fragmentation (issue 4; definitions in docs/line-extraction.md).
+// precision and fragmentation (definitions in docs/line-extraction.md).
 
 #include <cstddef>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Corrections from the global map (paper section 4.2, issue 6): an entity's reference scan, taken
+// Corrections from the global map (paper section 4.2): an entity's reference scan, taken
 // at a pose in its own frame, is matched against a virtual scan ray-cast from the global map
 // (localisation::VirtualScanner) at the pose the current alignment predicts. A good match gives a
 // new map_from_entity; a poor one leaves the alignment alone (failure is data).

@@ -1,5 +1,5 @@
 #pragma once
-// Kalman-style gating of the fusion's virtual-scan corrections (paper section 4.2, issue 6). The
+// Kalman-style gating of the fusion's virtual-scan corrections (paper section 4.2). The
 // fusion keeps, per entity, the uncertainty of the entity's pose in the map frame: it grows with
 // the distance the entity's own odometry travelled and shrinks at each accepted correction. A
 // match (ComputeCorrection) becomes a measurement whose covariance comes from the matcher's

@@ -1,5 +1,5 @@
 #pragma once
-// What the fusion service is told (issue 6): every input is one of these plain structs, stamped
+// What the fusion service is told: every input is one of these plain structs, stamped
 // with the fusion's own receive time so that replaying the journal reproduces the state exactly.
 // Frames: an entity's local map is in its own frame ("entity"); the global map and annotations
 // are in the map frame; map_from_entity maps the former into the latter.

@@ -1,5 +1,5 @@
 #pragma once
-// The central fusion (issue 6) as a pure state machine: inputs (fusion_input.hpp) in, outputs
+// The central fusion as a pure state machine: inputs (fusion_input.hpp) in, outputs
 // (global-map deltas, snapshot requests, lifecycle and annotation changes, placement) out. It
 // keeps each entity's local map, aligns it by map_from_entity and merges all of them with the a
 // priori plan into one GlobalMap. Same inputs in the same order give bit-identical state, which

@@ -1,5 +1,5 @@
 #pragma once
-// The fusion with its persistence (issue 6): every input is written to the journal before it is
+// The fusion with its persistence: every input is written to the journal before it is
 // applied (write-ahead), and every checkpoint_every records the whole state is checkpointed. On
 // construction the state is rebuilt from the directory (newest checkpoint plus the records after
 // it), so a fusion killed with kill -9 resumes bit-identical and entities resynchronise by version.

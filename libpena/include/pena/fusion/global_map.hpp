@@ -1,5 +1,5 @@
 #pragma once
-// The merged global line map of the fusion service (issue 6): every source (the a priori plan and
+// The merged global line map of the fusion service: every source (the a priori plan and
 // each placed entity's local map, already in the map frame) is merged into one line map with
 // line_map::LineMap's same-wall rule; global ids stay stable across rebuilds because each global
 // segment is matched to its predecessor by the local segments that support it (provenance).

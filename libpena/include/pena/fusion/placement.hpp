@@ -1,5 +1,5 @@
 #pragma once
-// Placing an entity whose start pose is unknown (issue 6): its local map (entity frame) is matched
+// Placing an entity whose start pose is unknown: its local map (entity frame) is matched
 // to the global map (map frame). Hypotheses come from corner correspondences (two walls meeting at
 // a corner fix a rigid transform), each is refined and scored by how much of the local walls the
 // global map explains; several distinct hypotheses are kept and one is accepted only when it

@@ -1,5 +1,5 @@
 #pragma once
-// The fusion service's persistence on disk (issue 6, docs/fusion.md): a directory holding an
+// The fusion service's persistence on disk (docs/fusion.md): a directory holding an
 // append-only journal of opaque records (every input the fusion received, in order) and periodic
 // checkpoints (the whole state at one record). After a crash the newest checkpoint plus the
 // journal records after it rebuild the state. Each record is framed like the mission log: length,

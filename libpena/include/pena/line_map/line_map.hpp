@@ -1,5 +1,5 @@
 #pragma once
-// A line map that merges what it is given (issue 4): segments seen again, collinear pieces and
+// A line map that merges what it is given: segments seen again, collinear pieces and
 // revisits of the same wall become one segment with a stable id, so the map does not grow with
 // revisits; each change is a versioned MapDelta that a receiver applies to get the same map.
 

@@ -1,5 +1,5 @@
 #pragma once
-// Versioned changes of a line map (issue 4): what a sender publishes and a receiver applies.
+// Versioned changes of a line map: what a sender publishes and a receiver applies.
 // Values are quantised (endpoints to 1 mm, fit error to 0.1 mm, counts to integers) when a LineMap
 // stores them, so the wire encoding carries them exactly and a receiver gets the same doubles.
 

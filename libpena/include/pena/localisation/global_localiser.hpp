@@ -50,8 +50,7 @@ struct GlobalLocaliserOptions {
   double max_range_m = 30.0;   // scan points farther than this are dropped
   double min_range_m = 0.1;    // closer returns are the carrier's body
   // A beam agrees when real and virtual range differ by at most this. 0.5 m takes in a wall the
-  // plan draws 0.4 m off (office's archive front; with 0.3 the true place trailed a look-alike
-  // 6 m along there): 82 / 100 office starts against 75 (docs/localisation.md, session 15).
+  // plan draws 0.4 m off (with 0.3 m the true place trails a look-alike along the corridor).
   double agreement_tolerance_m = 0.5;
 };
 

@@ -22,10 +22,8 @@ struct GlobalTrackerOptions {
   int max_tracks = 30;             // hypotheses followed at once (a search adds up to this many)
   int max_keyframes = 16;          // keyframes kept as evidence (the latest)
   int min_keyframes = 6;           // evidence from at least this many keyframes ...
-  // ... spread over this many metres walked before a decision. 6 m (3 m until session 24): the
-  // office corridor repeats its doors every 6 m, and in front of the archive, where the plan draws
-  // the wall 0.4 m off, starts walking west were decided on the place 6 m along after 4 m of walk
-  // (4 of 100 starts per draw); with 6 m, 385 of 400 starts over four draws (379 with 3 m).
+  // ... spread over this many metres walked before a decision. A corridor whose doors repeat
+  // every 6 m, seen where the plan draws a wall off, is otherwise decided on the place 6 m along.
   double min_travel_m = 6.0;
   // The winner's evidence (agreeing minus see-through beams, summed over the keyframes) exceeds
   // every other hypothesis' by this many beams ...
@@ -61,9 +59,8 @@ struct GlobalTrackerOptions {
   // Tracks are then ranked by their smallest pairwise lead; the winner leads every other by
   // decide_margin_beams; tracks trailing the leader by drop_margin_beams are dropped unless off
   // the plan at the latest keyframe; a track off the plan is carried by the odometry, not re-fitted.
-  // On by default since session 14 together with the three options below and the chain's compass
-  // bound: 75 / 100 office starts against 68 with none of them (docs/localisation.md, "Session
-  // 14"); alone it was better on the west-wing starts but worse on the annex.
+  // It works together with the three options below and the chain's compass bound; alone it helps
+  // where the walker leaves the plan through a wall it draws, and costs where the plan lacks rooms.
   int freeze_history_keyframes = 48;
   double boundary_fraction = 0.25;
   // With the pairwise freeze only: how tracks are ranked and decided.
@@ -87,18 +84,16 @@ struct GlobalTrackerOptions {
   // the search that found it (0 = off): its evidence on the earlier keyframes is the odometry's
   // replay, which a place found while the true one is off the plan wins without having been
   // checked on a single new scan (office: the north-east room found on walking into the annex).
-  // 6 (min_keyframes) since session 16: with 2 that room was still decided, 25 m off, on 3 of
-  // the 100 bench starts (docs/localisation.md).
+  // 6, as min_keyframes: fewer lets such a room be decided before the walk refutes it.
   int min_followed_keyframes = 6;
   // No decision at a keyframe where fewer than this fraction of the beams return (0 = off): a scan
   // that sees little of the building fits many places on the plan. In office's smoke-filled
   // archive (laser range 2.5 m) 20-39 % of the beams return, elsewhere 94-99 %, and five of the
   // ten wrong decisions were taken there, on rooms 6 or 17 m off.
   double min_decide_return_fraction = 0.5;
-  // ... at any of the latest this many keyframes (1: the latest only, session 15). 16
-  // (max_keyframes: the whole evidence window) since session 16: walking out of the archive, the
-  // decision came a few keyframes after the smoke, on evidence gathered in it, and went to a
-  // place 6 m along the corridor (6 keyframes still left five of those).
+  // ... at any of the latest this many keyframes (1: the latest only). 16, max_keyframes, covers
+  // the whole evidence window: a decision just after the smoke would rest on evidence gathered
+  // in it.
   int min_decide_return_keyframes = 16;
 };
 

@@ -33,8 +33,8 @@ struct LocalisationChainOptions {
   // plan searches and the followed hypotheses keep to headings within this of the odometry's
   // (GlobalTrackerOptions::odom_heading_tolerance_rad); it allows for a compass disturbed where
   // the walk starts. Without a compass sample within compass_wait_s of the start, or for a robot,
-  // every heading is searched as with 0. 30 deg by default since session 14 (with the tracker's
-  // pairwise freeze; docs/localisation.md).
+  // every heading is searched as with 0. Works with the tracker's pairwise freeze
+  // (docs/localisation.md, "Global localisation").
   double compass_tolerance_rad = 0.5235987755982988;  // 30 deg
   double compass_wait_s = 1.0;
   GlobalLocaliserOptions global;

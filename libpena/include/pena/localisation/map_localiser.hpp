@@ -67,7 +67,7 @@ struct MapLocaliserOptions {
   bool along_search_failed = true;
   // The place the search along the weak direction takes must also score along_min_drop above
   // every other place searched at least two steps from it: a peak, not the best of flat scores.
-  // false: only above the expected place, as before session 23.
+  // false: only above the expected place.
   bool along_search_unique = true;
   // A re-acquisition (the first accepted round after being outside the plan, in the grown
   // window) needs a place the scan pins down in every direction: a round that is degenerate,
@@ -84,7 +84,7 @@ struct MapLocaliserOptions {
   // walking back into the plan up the south passage after 25 s outside on an odometry within
   // 0.06 m, was re-acquired 1.66 m along it (score 0.94, pinned, window 3.2 m) and carried
   // 0.8-1 m off for 7 s. Such a round counts as failed, so the next one searches a window grown
-  // by window_growth. false: edge optima are taken, as before session 23.
+  // by window_growth. false: edge optima are taken.
   bool require_interior = true;
   // Beyond the paper: a round at every scan, not only at reference changes, so a single badly
   // matched odometry scan (a corridor along which the odometry slid) is corrected as well.

@@ -1,5 +1,5 @@
 #pragma once
-// Learning where the plan's walls really are (issue 5: robustness to shifted walls). A rough plan
+// Learning where the plan's walls really are (robustness to shifted walls). A rough plan
 // draws some walls tens of centimetres off. Where such a wall is the only thing in sight that
 // constrains one direction (a corridor's end wall), every round matches the scan onto it and the
 // pose follows the drawing. The wall can be measured, though, while other walls pin that
@@ -24,7 +24,8 @@ namespace pena::localisation {
 // return beyond it in bearing, within past_rad, lies past_m or more farther away (and its bearing
 // is past_rad inside the scan's span).
 struct PlanEndOptions {
-  // On by default: the office's east end (docs/localisation.md, "Session 25").
+  // On by default: a wall drawn off across a corridor's end pulls every round along it
+  // (docs/localisation.md, "Wall ends").
   bool enabled = true;
   double join_m = 0.1;          // an end with another segment this near is a corner, not a reference
   double across_m = 0.1;

@@ -1,5 +1,5 @@
 #pragma once
-// Openings the plan draws shut (issue 5: the plan is partly wrong). A rough plan draws some walls
+// Openings the plan draws shut (the plan is partly wrong). A rough plan draws some walls
 // straight across real passages. The virtual scan then shows a wall where the laser sees far
 // through, and the rounds match whatever lies beyond onto it: office seed 7 walking south down the
 // passage at x 22, whose south end the plan closes, was pulled 1 m back along it in one round.
