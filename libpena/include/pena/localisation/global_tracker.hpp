@@ -39,8 +39,7 @@ struct GlobalTrackerOptions {
   // Final fit (0 = off): the winner is re-fitted on the points of the latest this many kept
   // keyframes at once, placed by the odometry (GlobalLocaliser::FitMerged). One keyframe in a
   // corridor pins the pose across it only; door frames spread over a few metres also pin it
-  // along. Off: on office it turned a 0.41 m along-corridor anchor into 0.26 m but pulled a
-  // 0.01 m one 0.14-0.17 m towards the east wall drawn 0.3 m off (docs/localisation.md).
+  // along. Off: it also pulls good anchors towards walls the plan draws off.
   int final_keyframes = 0;
   double drop_margin_beams = 400.0;  // hypotheses trailing the leader by more are dropped
   double search_every_m = 2.0;       // a new whole-plan search after this many metres walked
@@ -53,9 +52,8 @@ struct GlobalTrackerOptions {
   // tracks are compared only on keyframes where both are "on the plan" (inside its bounding box
   // and seeing past its boundary on at most boundary_fraction of the returns), on the latest
   // max_keyframes such keyframes of this history: while either is off the plan the pair's
-  // difference is frozen, and it resumes when both are on it again. Office: walking west past
-  // the plan's x = 4 end wall into the unmapped wing, the true place sees past the wall and a
-  // look-alike 6 m east earns more; without the freeze the true place lost its earlier lead.
+  // difference is frozen, and it resumes when both are on it again: walking past a plan's end
+  // wall into an unmapped wing, the true place sees past the wall and a look-alike earns more.
   // Tracks are then ranked by their smallest pairwise lead; the winner leads every other by
   // decide_margin_beams; tracks trailing the leader by drop_margin_beams are dropped unless off
   // the plan at the latest keyframe; a track off the plan is carried by the odometry, not re-fitted.
@@ -69,8 +67,8 @@ struct GlobalTrackerOptions {
   //     only when the leader leads it by drop_margin_beams both on that evidence and pairwise
   //     (and it is on the plan at the latest keyframe); decisions as without the freeze;
   //  2: as 1, and the leader must also lead every other track pairwise by decide_margin_beams.
-  // Office: in the annex passage (off the plan) the true place leads on recent evidence while a
-  // north room leads pairwise; at the west end it is the other way round (docs/localisation.md).
+  // Off the plan the true place may lead on recent evidence while a look-alike leads pairwise, and
+  // the other way round elsewhere, so 2 asks for both.
   int freeze_ranking = 2;
   // With the pairwise freeze only (false = off): the answer before a decision (the first of
   // TrackerUpdate::ranked) is the evidence leader when it is off the plan at the latest keyframe,
@@ -87,9 +85,7 @@ struct GlobalTrackerOptions {
   // 6, as min_keyframes: fewer lets such a room be decided before the walk refutes it.
   int min_followed_keyframes = 6;
   // No decision at a keyframe where fewer than this fraction of the beams return (0 = off): a scan
-  // that sees little of the building fits many places on the plan. In office's smoke-filled
-  // archive (laser range 2.5 m) 20-39 % of the beams return, elsewhere 94-99 %, and five of the
-  // ten wrong decisions were taken there, on rooms 6 or 17 m off.
+  // that sees little of the building (smoke: 20-39 % of the beams return) fits many places.
   double min_decide_return_fraction = 0.5;
   // ... at any of the latest this many keyframes (1: the latest only). 16, max_keyframes, covers
   // the whole evidence window: a decision just after the smoke would rest on evidence gathered

@@ -44,12 +44,11 @@ struct LocalisationChainOptions {
   // GlobalTracker (the `tracker` options, every heading) follows whole-plan hypotheses over the
   // keyframes from then on, beside the plan rounds. If a plan round is accepted first it is
   // dropped; if it decides first, the odometry restarts at the winner as after a global start and
-  // the round reports MapStatus::kRelocalised. Why: a heading error beyond the window (office
-  // seed 13: the laser odometry lost 104 deg in a fast turn in the annex) is never re-acquired,
-  // the entity stays 17 m off to the end. A winner whose heading is more than
-  // relocalise_compass_tolerance_rad off the latest compass reading is refused and the tracker
-  // starts afresh (office seeds 1-4 without it: the unmapped annex taken for a plan corridor
-  // turned 90 deg); an entity without a compass (a robot) is never relocalised.
+  // the round reports MapStatus::kRelocalised. Why: a heading error beyond the window (a fast turn
+  // the laser odometry lost) is never re-acquired by plan rounds. A winner whose heading is more
+  // than relocalise_compass_tolerance_rad off the latest compass reading is refused and the
+  // tracker starts afresh (an unmapped room can look like a plan corridor turned 90 deg); an
+  // entity without a compass (a robot) is never relocalised.
   int relocalise_after_rounds = 0;
   double relocalise_compass_tolerance_rad = 0.5235987755982988;  // 30 deg
 };

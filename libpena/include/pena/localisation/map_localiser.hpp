@@ -45,9 +45,8 @@ struct MapLocaliserOptions {
   // A round whose correction is at least recast_min_m or recast_min_rad (and whose best grid
   // pose lies inside the window, not on its edge) is judged again on a virtual scan re-cast
   // where the correction puts the entity, matched in the paper's window: what is seen through
-  // doors and past corners changes with the position, so a right 0.66 m correction along the
-  // office corridor scored 0.61 on the scan cast from the wrong pose and 0.97 on the re-cast one.
-  // Huge values disable it (every round judged where it was cast).
+  // doors and past corners changes with the position, so a right correction judged from the
+  // wrong pose scores low. Huge values disable it (every round judged where it was cast).
   double recast_min_m = 0.1;
   double recast_min_rad = 0.017453292519943295;  // 1 deg
   // When the odometry took this keyframe (or a direction of it) from its motion prior
@@ -55,15 +54,13 @@ struct MapLocaliserOptions {
   // places along_search_step_m apart up to along_search_m either way along the weak direction,
   // each re-cast and matched in the paper's window. A place the scan pins down there (not
   // degenerate), scoring at least reacquire_min_score and along_min_drop above the expected
-  // place, is taken: the motion prior may have slid along the corridor (office seed 1 with
-  // odometry.prior_gate_agree_gyro_m = 0.1: 0.47 m in one keyframe at 166.5 s). 0: off.
+  // place, is taken: along a corridor the motion prior (step counting) may have slid. 0: off.
   double along_search_m = 1.0;
   double along_search_step_m = 0.25;
   // The same search for a degenerate round that failed (scored below min_score): the odometry's
   // own match may have slid along the corridor, and the plan then looks wrong from the expected
-  // place in every direction but the weak one (office seed 3 with the odometry's
-  // drop_seen_through_points: 0.45 m ahead at 165 s, seven failed rounds in the corridor, then a
-  // re-acquisition 0.69 m off kept to the end). false: only for keyframes on the motion prior.
+  // place in every direction but the weak one, and without the search the rounds fail until the
+  // entity is judged outside. false: only for keyframes on the motion prior.
   bool along_search_failed = true;
   // The place the search along the weak direction takes must also score along_min_drop above
   // every other place searched at least two steps from it: a peak, not the best of flat scores.
@@ -73,18 +70,15 @@ struct MapLocaliserOptions {
   // window) needs a place the scan pins down in every direction: a round that is degenerate,
   // or along whose weak direction eq. 2 falls by less than along_min_drop, is refused and the
   // entity stays outside. In a corridor the wide window's best place along it is a look-alike as
-  // often as not (office seeds 1 and 3 re-entering from the west wing once its end wall was cut
-  // open, plan_openings.hpp: 1.4-1.6 m along, score 0.86). false: off.
+  // often as not. false: off.
   bool reacquire_pinned = true;
   // A round is accepted only if its search's best grid position lies inside the window, not on
   // its edge in x or y (rounds judged again from where they put the entity excepted: recast,
   // along search; the heading's edge is left to the refinement, which corrects a pose 2-3 deg
   // beyond the paper's +-2 deg in one round). An optimum on the edge is no peak of the searched
-  // place and the least-squares refinement then finishes on whatever lies beyond: office seed 2,
-  // walking back into the plan up the south passage after 25 s outside on an odometry within
-  // 0.06 m, was re-acquired 1.66 m along it (score 0.94, pinned, window 3.2 m) and carried
-  // 0.8-1 m off for 7 s. Such a round counts as failed, so the next one searches a window grown
-  // by window_growth. false: edge optima are taken.
+  // place and the least-squares refinement then finishes on whatever lies beyond. Such a round
+  // counts as failed, so the next one searches a window grown by window_growth. false: edge
+  // optima are taken.
   bool require_interior = true;
   // Beyond the paper: a round at every scan, not only at reference changes, so a single badly
   // matched odometry scan (a corridor along which the odometry slid) is corrected as well.
