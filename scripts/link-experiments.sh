@@ -63,8 +63,8 @@ fi
 
 # The matrix: NAME|MODE|RATE_KBIT|team-link-run options. Variants: gateway (pena-gateway's
 # defaults: 480-byte packets; map updates larger than the room in a packet go in pieces),
-# gateway-p1400 (--packet-bytes 1400 --burst-bits 16000, the workaround measured before map
-# updates were fragmented; see docs/link-experiments.md), dds (plain DDS with flow controllers).
+# gateway-p1400 (--packet-bytes 1400 --burst-bits 16000: fewer, larger packets; see
+# docs/link-experiments.md), dds (plain DDS with flow controllers).
 variant_opts() {
   case "$1" in
     gateway-p1400) echo "--mode gateway -- --packet-bytes 1400 --burst-bits 16000";;

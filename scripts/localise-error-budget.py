@@ -1,6 +1,5 @@
 #!/usr/bin/env python3
-"""Error budget of `pena localise` on simulated missions (docs/localisation.md, "Office: error
-budget").
+"""Error budget of `pena localise` on simulated missions (docs/localisation.md, "Figures").
 
 Per scan of each run, the error against truth.tum, counted as `pena localise` counts its in-map
 RMS (true pose inside the plan's bounding box, the first 5 m walked after each re-entry left out),

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Issue 5's office figure over small start shifts: `pena localise` with the true start pose and
+# The office localisation figure over small start shifts: `pena localise` with the true start pose and
 # the same moved along x by a few millimetres, per simulated office mission; prints each run's
 # in-map RMS position and heading error (summary.json's truth block) and each mission's mean.
-# Single runs are chaotic (1 mm moves a seed's figure by up to 0.08 m, docs/localisation.md,
-# "Office: how much one run says"), so compare variants on the means.
+# Single runs are chaotic (1 mm moves a seed's figure by up to 0.08 m), so compare variants on the
+# means.
 # One run at a time (5-10 s each).
 #
 #   scripts/office-start-shifts.sh [--build DIR] [--work DIR] [--missions "DIR ..."]
