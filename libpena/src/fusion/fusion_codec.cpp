@@ -4,7 +4,7 @@
 #include "fusion_fields.hpp"
 #include "pena/io/input_error.hpp"
 
-// Layout (docs/fusion.md): u8 codec version, u8 kind (the FusionInput alternative's index, or
+// Layout (docs/formats.md): u8 codec version, u8 kind (the FusionInput alternative's index, or
 // 255 for a checkpoint), then the fields in declaration order. u64/i64/f64 little-endian (f64 by
 // its IEEE bits), strings and lists as u64 count + items, optionals as u8 flag + value.
 

@@ -1,6 +1,6 @@
 #include "fusion_fields.hpp"
 
-// Field layouts of the fusion codec (docs/fusion.md): fixed-width little-endian numbers, doubles
+// Field layouts of the fusion codec (docs/formats.md): fixed-width little-endian numbers, doubles
 // by their bits, lists as a u64 count and items.
 
 namespace pena::fusion::detail {

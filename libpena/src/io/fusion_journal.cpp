@@ -16,7 +16,7 @@
 
 #include "pena/io/input_error.hpp"
 
-// Layout (docs/fusion.md). Journal file journal-<first sequence>.pfj: magic "PENAFJNL", u32
+// Layout (docs/formats.md). Journal file journal-<first sequence>.pfj: magic "PENAFJNL", u32
 // version, then frames u32 size | u64 sequence | payload | u32 CRC-32 of size, sequence and
 // payload. Checkpoint file checkpoint-<sequence>.pfc: magic "PENAFCKP", u32 version, one frame.
 // All integers little-endian. The frame's CRC is the mission log's idea (docs/mission-log.md).

@@ -1,5 +1,5 @@
 #pragma once
-// Fusion inputs and checkpoints as bytes (the journal's records, docs/fusion.md): a compact,
+// Fusion inputs and checkpoints as bytes (the journal's records, docs/formats.md): a compact,
 // versioned little-endian encoding in which doubles keep every bit, so a replayed journal rebuilds
 // bit-identical state.
 
