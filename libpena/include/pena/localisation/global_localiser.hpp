@@ -1,12 +1,8 @@
 #pragma once
 // Global localisation on an a priori plan (beyond the paper, whose method needs a known start):
-// the plan's segments are sampled into reference points, and a scan is matched against the whole
-// plan with the correlation matcher's branch-and-bound search over every position and heading,
-// one search per tile of the plan so that distinct places yield distinct ranked hypotheses. Each
-// hypothesis is then refined with a fine local match. Given the whole laser scan, hypotheses are
-// ranked by how well the virtual scan from them agrees beam by beam with the real one: unlike the
-// point score, this counts beams that pass through a plan wall against a place, which separates
-// the look-alike stretches of a corridor with evenly spaced doors.
+// a branch-and-bound search per tile of the plan, fine refinement, and ranking by beam agreement
+// with the virtual scan, which counts beams through a plan wall against a place and so separates
+// look-alike stretches of a corridor (docs/localisation.md, "Global localisation").
 
 #include <memory>
 #include <optional>
@@ -28,10 +24,7 @@ struct GlobalLocaliserOptions {
   double coarse_step_xy_m = 0.10;
   double coarse_step_theta_rad = 0.017453292519943295;  // 1 deg
   double tile_size_m = 3.0;    // one hypothesis per tile and heading sector at most
-  // Headings are searched in this many sectors per tile, each with its own best pose: with one
-  // search over all headings, a tile's best was often the corridor seen the other way round and
-  // the true pose never became a hypothesis (office: 10 of 20 misses).
-  int heading_sectors = 4;
+  int heading_sectors = 4;     // heading sectors per tile, each with its own best pose
   int refine_candidates = 60;  // coarse candidates (best coarse score first) refined and ranked
   double margin_m = 1.0;       // the searched area extends this far beyond the plan's box
   int max_hypotheses = 5;      // ranked hypotheses refined and returned
@@ -39,19 +32,15 @@ struct GlobalLocaliserOptions {
   scan_matching::CorrelationMatcherOptions fine{0.08, 0.02, 8, 10, true};
   scan_matching::SearchWindow fine_window{0.24, 0.24, 0.05235987755982988, 0.02,
                                           0.004363323129985824};  // 24 cm x 24 cm x 3 deg
-  // Verify (hypothesis tracking): a narrower window, so a wrong hypothesis cannot slide along
-  // with the walk to keep fitting; the odometry between keyframes is good to a few cm.
+  // Verify (hypothesis tracking): narrow, so a wrong hypothesis cannot slide along with the walk.
   scan_matching::SearchWindow verify_window{0.12, 0.12, 0.02617993877991494, 0.02,
                                             0.004363323129985824};  // 12 cm x 12 cm x 1.5 deg
-  // Final fit of a decided hypothesis on several keyframes' points at once (GlobalTracker's
-  // final_keyframes): wide along a corridor, where one keyframe's fit slides.
+  // Final fit of a decided hypothesis on several keyframes at once (GlobalTracker's final_keyframes).
   scan_matching::SearchWindow final_window{1.2, 1.2, 0.05235987755982988, 0.04,
                                            0.004363323129985824};  // 1.2 m x 1.2 m x 3 deg
   double max_range_m = 30.0;   // scan points farther than this are dropped
   double min_range_m = 0.1;    // closer returns are the carrier's body
-  // A beam agrees when real and virtual range differ by at most this. 0.5 m takes in a wall the
-  // plan draws 0.4 m off (with 0.3 m the true place trails a look-alike along the corridor).
-  double agreement_tolerance_m = 0.5;
+  double agreement_tolerance_m = 0.5;  // a beam agrees within this of the virtual range (walls drawn off)
 };
 
 // Headings a whole-plan search may return: within tolerance_rad of heading_rad (map frame), e.g.
@@ -67,18 +56,14 @@ struct PoseHypothesis {
   double score = 0.0;         // eq. 2 fraction with the fine threshold, in [0, 1]
   int hits = 0;               // scan points on the plan
   double coarse_score = 0.0;  // eq. 2 fraction of the coarse search
-  // Beam agreement with the virtual scan (whole-scan Localise only, else equal to score):
-  // (agreeing beams - beams seeing through a plan wall) / real returns, at most 1.
-  double agreement = 0.0;
+  double agreement = 0.0;     // (agreeing - see-through beams) / returns (whole-scan Localise; else score)
 };
 
 // Beam-by-beam comparison of a real scan with the virtual scan from one pose.
 struct BeamAgreement {
   int agree = 0;    // real range within agreement_tolerance_m of the virtual one
   int through = 0;  // real range beyond the virtual one: the beam passed where the plan has a wall
-  // Of `through`, those whose real end point lies outside the plan's bounding box: the beam saw
-  // past the plan's boundary (office: past the x = 4 end wall into the unmapped west wing).
-  int beyond = 0;
+  int beyond = 0;   // of `through`, those ending outside the plan's bounding box
   int returns = 0;  // real returns within the range band
   double fraction() const { return returns == 0 ? 0.0 : static_cast<double>(agree - through) / returns; }
 };
@@ -104,16 +89,13 @@ class GlobalLocaliser {
   GlobalResult Localise(const sensors::LaserScan& scan) const;
   // The same keeping up to `max_hypotheses` (instead of the option's) for hypothesis tracking.
   GlobalResult Localise(const sensors::LaserScan& scan, int max_hypotheses) const;
-  // The same searching only headings within `bound` (fewer heading sectors: faster, and the
-  // corridor seen the other way round is never a hypothesis); nullopt: every heading.
+  // The same searching only headings within `bound`; nullopt: every heading.
   GlobalResult Localise(const sensors::LaserScan& scan, int max_hypotheses,
                         const std::optional<HeadingBound>& bound) const;
-  // One hypothesis checked at a new scan: fine match in verify_window around `map_from_body_guess`,
-  // then beam agreement at the refined pose.
+  // One hypothesis checked at a new scan: fine match in verify_window, then beam agreement.
   PoseHypothesis Verify(const sensors::LaserScan& scan, const geometry::Pose2& map_from_body_guess) const;
 
-  // Fine match of points merged from several scans (body frame of the latest) in final_window
-  // around `map_from_body_guess`; the score is eq. 2 with the fine threshold.
+  // Fine match in final_window of points merged from several scans (body frame of the latest).
   PoseHypothesis FitMerged(const scan_matching::Points2& points_body, const geometry::Pose2& map_from_body_guess) const;
 
   // The real scan against the virtual scan from `map_from_body` (laser at the body origin).

@@ -22,35 +22,20 @@ namespace pena::localisation {
 struct LocalisationChainOptions {
   odometry::LaserOdometryOptions odometry;
   MapLocaliserOptions map;
-  // Unknown start: the odometry runs in a frame of its own while global hypotheses are followed
-  // over the first keyframes (GlobalTracker); when one wins, the odometry restarts at it on the
-  // plan. In the unknown phase the compass is not used (its absolute heading does not hold in a
-  // frame started at an arbitrary heading) ...
+  // Unknown start: follow global hypotheses (GlobalTracker) until one wins, then restart the
+  // odometry there (docs/localisation.md, "Global localisation").
   bool global_start = false;
-  // ... unless this is > 0 and the entity has a compass (a person whose motion prior is the
-  // gyro + compass dead reckoning): then no scan is used before the first compass sample, the
-  // unknown phase's odometry starts at the compass heading and keeps the compass, and the whole-
-  // plan searches and the followed hypotheses keep to headings within this of the odometry's
-  // (GlobalTrackerOptions::odom_heading_tolerance_rad); it allows for a compass disturbed where
-  // the walk starts. Without a compass sample within compass_wait_s of the start, or for a robot,
-  // every heading is searched as with 0. Works with the tracker's pairwise freeze
-  // (docs/localisation.md, "Global localisation").
+  // With a compass, start the unknown phase at the compass heading and search only within this
+  // of it (0: every heading; robots and entities without a compass search every heading).
   double compass_tolerance_rad = 0.5235987755982988;  // 30 deg
-  double compass_wait_s = 1.0;
+  double compass_wait_s = 1.0;  // wait this long for a first compass sample before searching all headings
   GlobalLocaliserOptions global;
   GlobalTrackerOptions tracker;
-  // Relocalisation of a lost entity (beyond the paper; 0 = off, the default): after this many
-  // plan rounds in a row rejected with the window at its maximum (map.max_window), a
-  // GlobalTracker (the `tracker` options, every heading) follows whole-plan hypotheses over the
-  // keyframes from then on, beside the plan rounds. If a plan round is accepted first it is
-  // dropped; if it decides first, the odometry restarts at the winner as after a global start and
-  // the round reports MapStatus::kRelocalised. Why: a heading error beyond the window (a fast turn
-  // the laser odometry lost) is never re-acquired by plan rounds. A winner whose heading is more
-  // than relocalise_compass_tolerance_rad off the latest compass reading is refused and the
-  // tracker starts afresh (an unmapped room can look like a plan corridor turned 90 deg); an
-  // entity without a compass (a robot) is never relocalised.
+  // Relocalise a lost entity with a GlobalTracker after this many rejected rounds at the largest
+  // window (0 = off); only entities with a compass, since a heading error beyond the window is
+  // what plan rounds never re-acquire.
   int relocalise_after_rounds = 0;
-  double relocalise_compass_tolerance_rad = 0.5235987755982988;  // 30 deg
+  double relocalise_compass_tolerance_rad = 0.5235987755982988;  // winners this far off the compass are refused
 };
 
 // The estimate at one scan.
@@ -81,8 +66,7 @@ class LocalisationChain {
   std::optional<LocalisedPose> Add(const sensors::SensorRecord& record);
 
   const odometry::OdometryCounts& odometry_counts() const;
-  // The plan as matched now (with the walls MapLocaliserOptions::plan_adaptation moved) and
-  // those moves.
+  // The plan as matched now (with the walls plan adaptation moved) and those moves.
   const std::vector<geometry::Segment2>& plan() const;
   const std::vector<SegmentShift>& plan_shifts() const;
   const std::vector<PlanOpening>& plan_openings() const;

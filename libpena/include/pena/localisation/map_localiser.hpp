@@ -38,55 +38,20 @@ struct MapLocaliserOptions {
   double min_range_m = 0.1;         // closer real returns are the carrier's body
   double max_range_m = 15.0;        // real and virtual ranges used, metres
   double degenerate_eigen_ratio = 0.05;  // J^T J translation eigen ratio below it: corridor
-  // ... unless eq. 2 falls by along_min_drop when the best pose moves along_probe_m either way
-  // along the weak direction (door frames, corridor ends): then that direction is corrected too.
-  double along_probe_m = 0.3;
-  double along_min_drop = 0.05;
-  // A round whose correction is at least recast_min_m or recast_min_rad (and whose best grid
-  // pose lies inside the window, not on its edge) is judged again on a virtual scan re-cast
-  // where the correction puts the entity, matched in the paper's window: what is seen through
-  // doors and past corners changes with the position, so a right correction judged from the
-  // wrong pose scores low. Huge values disable it (every round judged where it was cast).
-  double recast_min_m = 0.1;
-  double recast_min_rad = 0.017453292519943295;  // 1 deg
-  // When the odometry took this keyframe (or a direction of it) from its motion prior
-  // (degenerate, failed, no points, prior only, or gated), a degenerate round also tries the
-  // places along_search_step_m apart up to along_search_m either way along the weak direction,
-  // each re-cast and matched in the paper's window. A place the scan pins down there (not
-  // degenerate), scoring at least reacquire_min_score and along_min_drop above the expected
-  // place, is taken: along a corridor the motion prior (step counting) may have slid. 0: off.
-  double along_search_m = 1.0;
-  double along_search_step_m = 0.25;
-  // The same search for a degenerate round that failed (scored below min_score): the odometry's
-  // own match may have slid along the corridor, and the plan then looks wrong from the expected
-  // place in every direction but the weak one, and without the search the rounds fail until the
-  // entity is judged outside. false: only for keyframes on the motion prior.
-  bool along_search_failed = true;
-  // The place the search along the weak direction takes must also score along_min_drop above
-  // every other place searched at least two steps from it: a peak, not the best of flat scores.
-  // false: only above the expected place.
-  bool along_search_unique = true;
-  // A re-acquisition (the first accepted round after being outside the plan, in the grown
-  // window) needs a place the scan pins down in every direction: a round that is degenerate,
-  // or along whose weak direction eq. 2 falls by less than along_min_drop, is refused and the
-  // entity stays outside. In a corridor the wide window's best place along it is a look-alike as
-  // often as not. false: off.
-  bool reacquire_pinned = true;
-  // A round is accepted only if its search's best grid position lies inside the window, not on
-  // its edge in x or y (rounds judged again from where they put the entity excepted: recast,
-  // along search; the heading's edge is left to the refinement, which corrects a pose 2-3 deg
-  // beyond the paper's +-2 deg in one round). An optimum on the edge is no peak of the searched
-  // place and the least-squares refinement then finishes on whatever lies beyond. Such a round
-  // counts as failed, so the next one searches a window grown by window_growth. false: edge
-  // optima are taken.
-  bool require_interior = true;
-  // Beyond the paper: a round at every scan, not only at reference changes, so a single badly
-  // matched odometry scan (a corridor along which the odometry slid) is corrected as well.
-  bool every_scan = false;
+  // Rules beyond the paper; each is explained in docs/localisation.md, "Virtual scan matching".
+  double along_probe_m = 0.3;       // a degenerate round probes this far along its weak direction ...
+  double along_min_drop = 0.05;     // ... and corrects it too if eq. 2 falls by this much
+  double recast_min_m = 0.1;        // corrections this large are judged again from where they lead
+  double recast_min_rad = 0.017453292519943295;  // ... or this large in heading (1 deg)
+  double along_search_m = 1.0;      // search along a degenerate round's weak direction, m either way (0: off)
+  double along_search_step_m = 0.25;  // ... in steps of this
+  bool along_search_failed = true;  // search also for degenerate rounds that failed
+  bool along_search_unique = true;  // the place found must beat every other place two steps away
+  bool reacquire_pinned = true;     // a re-acquisition needs a place pinned in every direction
+  bool require_interior = true;     // an optimum on the window's x or y edge fails the round
+  bool every_scan = false;          // a round at every scan, not only at reference changes
   VirtualScannerOptions scanner;
-  // Beyond the paper: walls the accepted rounds measure off the drawing (while other walls pin
-  // the entity down) are moved where they are seen (plan_adaptation.hpp).
-  PlanAdaptationOptions plan_adaptation;
+  PlanAdaptationOptions plan_adaptation;  // walls measured off the drawing are moved (plan_adaptation.hpp)
 };
 
 // Where the entity is judged to be with respect to the plan.
@@ -119,8 +84,7 @@ struct MapCorrection {
   double window_theta_rad = 0.0;
   bool recast = false;        // judged again where a search put it (recast_min_m, along_search_m)
   double first_score = 0.0;   // eq. 2 of the first search (= score when not recast)
-  // Moved back by what the plan's free wall ends agreed on (PlanEndOptions::min_error_m).
-  bool ends_corrected = false;
+  bool ends_corrected = false;  // moved back by what the plan's free wall ends agreed on
 };
 
 // Matches keyframes of one entity's laser odometry against an a priori plan. Not thread-safe.

@@ -1,11 +1,7 @@
 #pragma once
-// Learning where the plan's walls really are (robustness to shifted walls). A rough plan
-// draws some walls tens of centimetres off. Where such a wall is the only thing in sight that
-// constrains one direction (a corridor's end wall), every round matches the scan onto it and the
-// pose follows the drawing. The wall can be measured, though, while other walls pin that
-// direction down: at accepted rounds, each segment's real returns are compared with where the
-// other walls put the entity along its normal, and a segment that is off by the same amount at
-// several rounds is moved there.
+// Learning where the plan's walls really are: at accepted rounds each segment's returns are
+// compared with where the other walls put the entity along its normal, and a segment off by the
+// same amount at several rounds is moved there (docs/localisation.md, "Plan adaptation").
 
 #include <Eigen/Core>
 #include <optional>
@@ -18,25 +14,17 @@
 namespace pena::localisation {
 
 // The plan's free wall ends (door jambs, a corridor's end) as references along their walls
-// (docs/localisation.md, "Wall ends"). An end is measured in a round where the returns along its
-// wall's line (within across_m of it, window_m of the end) run densely up to it (the last
-// min_points within max_gap_m of each other) and the laser saw past the last one: the nearest
-// return beyond it in bearing, within past_rad, lies past_m or more farther away (and its bearing
-// is past_rad inside the scan's span).
+// (docs/localisation.md, "Wall ends").
 struct PlanEndOptions {
-  // On by default: a wall drawn off across a corridor's end pulls every round along it
-  // (docs/localisation.md, "Wall ends").
-  bool enabled = true;
+  bool enabled = true;          // a wall drawn off across a corridor's end pulls every round along it
   double join_m = 0.1;          // an end with another segment this near is a corner, not a reference
-  double across_m = 0.1;
-  double window_m = 0.6;
-  int min_points = 4;
-  double max_gap_m = 0.2;
-  double past_rad = 0.053;  // 3 deg
-  double past_m = 0.3;
-  // A round's corrected pose is moved back when at least min_ends measured ends agree (RMS misfit
-  // at most max_spread_m) that it is off by min_error_m or more along the directions they pin
-  // down (each end pins its wall's direction; a direction needs min_ends ends' worth).
+  double across_m = 0.1;        // returns within this of the wall's line count for its end
+  double window_m = 0.6;        // ... within this of the end
+  int min_points = 4;           // returns that must run densely up to the end
+  double max_gap_m = 0.2;       // largest gap between those returns
+  double past_rad = 0.053;      // the laser must see past the end within this bearing (3 deg)
+  double past_m = 0.3;          // ... at least this much farther than the end
+  // Ends that must agree (RMS misfit <= max_spread_m) on an error >= min_error_m to move a pose back.
   int min_ends = 2;
   double max_spread_m = 0.05;
   double min_error_m = 0.15;
@@ -44,51 +32,34 @@ struct PlanEndOptions {
 
 // Options of the plan adaptation; validated by PlanAdaptation's (and MapLocaliser's) constructor.
 struct PlanAdaptationOptions {
-  // On by default: measured better on every scenario and no worse on the real logs
-  // (docs/localisation.md, "Walls drawn off the plan").
-  bool enabled = true;
+  bool enabled = true;          // docs/localisation.md, "Plan adaptation"
   double association_m = 0.6;   // a return counts for the nearest segment within this (normal) distance
   double end_margin_m = 0.15;   // ... and at least this far inside its ends (corners and door jambs)
   int min_points = 8;           // returns on a segment for it to be measured in a round
-  // How well a wall's position is known from one half of its returns in a round: a drawing
-  // error is per wall, so a half counts as one measurement of this, however many returns.
-  double wall_sigma_m = 0.03;
-  // The motion prior (the pose the odometry predicted for the round) is one more reference: its
-  // standard deviation grows with the distance walked since the previous accepted round; while
-  // it is at most prior_facing_sigma_m it counts as one of the two references a measured wall
-  // needs (min_other_information below).
-  double prior_sigma_m = 0.02;
-  double prior_sigma_per_m = 0.03;
-  double prior_sigma_rad = 0.005;
-  double prior_sigma_rad_per_m = 0.005;
-  double prior_facing_sigma_m = 0.05;
-  // Information from the other walls and the prior on the measured wall's offset, in units of
-  // one wall half (wall_sigma_m): below it, nothing else pins that direction down and the wall is
-  // not measured (a corridor's end wall seen alone). Two references at least must face the
-  // measured wall (normals within 45 deg), and they must agree (max_spread_m): with one, a room
-  // drawn too narrow cannot tell which wall is off.
+  double wall_sigma_m = 0.03;   // one measurement per half wall per round (drawing errors are per wall)
+  double prior_sigma_m = 0.02;          // motion prior sd at the round before, m
+  double prior_sigma_per_m = 0.03;      // ... growing per metre walked
+  double prior_sigma_rad = 0.005;       // heading prior sd, rad
+  double prior_sigma_rad_per_m = 0.005; // ... growing per metre walked
+  double prior_facing_sigma_m = 0.05;   // the prior counts as a reference facing the wall up to this sd
+  // Information the other walls and the prior give on the wall's offset (units of wall_sigma_m);
+  // below it nothing else pins that direction down and the wall is not measured.
   double min_other_information = 1.5;
   int min_rounds = 5;           // rounds that measured a segment before it may be moved
-  // Mean offset below which a wall stays: the matcher's 10 cm hit threshold absorbs such walls,
-  // and 0.10 m moved a right wall on team seed 1 ff1 (0.15: no wrong move in 17 runs).
-  double min_offset_m = 0.15;
+  double min_offset_m = 0.15;   // mean offset below which a wall stays (the matcher absorbs less)
   double max_spread_m = 0.08;   // standard deviation of its rounds' offsets above which it stays
-  // Walls drawn across real openings are cut where the rounds see far through them
-  // (plan_openings.hpp; docs/localisation.md, "Plan adaptation").
-  PlanOpeningsOptions openings;
+  PlanOpeningsOptions openings; // walls drawn across real openings are cut (plan_openings.hpp)
   PlanEndOptions ends;
 };
 
 // Throws std::invalid_argument naming the field and unit.
 void ValidatePlanAdaptationOptions(const PlanAdaptationOptions& options);
 
-// What an accepted round tells besides its returns: where the body was (map frame), the
-// correction the round applied (x, y in the map frame, heading), and the distance walked since
-// the round before it.
+// What an accepted round tells besides its returns.
 struct RoundView {
-  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
-  Eigen::Vector3d correction = Eigen::Vector3d::Zero();
-  double walked_m = 0.0;
+  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();   // the body's position, map frame
+  Eigen::Vector3d correction = Eigen::Vector3d::Zero(); // the round's correction: x, y (map frame), heading
+  double walked_m = 0.0;                                // distance since the round before
   double heading_rad = 0.0;  // the body's heading in the map frame (the laser's field of view)
 };
 
@@ -99,8 +70,7 @@ struct SegmentShift {
   int rounds = 0;         // rounds that measured it when it was last moved
 };
 
-// Which ends of a plan segment are references along it: free ends as drawn. An end made by
-// cutting an opening is not (it lies on the openings' bin grid).
+// Which ends of a plan segment are references along it (free ends as drawn, not cut openings).
 struct SegmentEnds {
   bool start = false;
   bool end = false;
@@ -111,15 +81,10 @@ class PlanAdaptation {
  public:
   PlanAdaptation(const PlanAdaptationOptions& options, std::vector<geometry::Segment2> plan);
 
-  // One accepted round: the real returns in the map frame at the corrected pose, and where the
-  // laser was. Returns true when a segment was moved or cut (the caller re-casts from the new
-  // plan).
+  // One accepted round (returns in the map frame at the corrected pose); true when the plan changed.
   bool Observe(const scan_matching::Points2& map_points, const RoundView& view);
 
-  // Where the plan's free wall ends put a round taken at `origin_m` facing `heading_rad`, whose
-  // returns in the map frame are `map_points`: the translation error of that pose (map frame;
-  // zero across directions the ends do not pin down) when at least ends.min_ends agree;
-  // nullopt otherwise.
+  // The round's translation error (map frame) where >= ends.min_ends wall ends agree, else nullopt.
   std::optional<Eigen::Vector2d> ErrorAtEnds(const scan_matching::Points2& map_points, const Eigen::Vector2d& origin_m,
                                              double heading_rad) const;
 
@@ -137,15 +102,14 @@ class PlanAdaptation {
     Eigen::Vector2d centroid_m;
     double median_m;
   };
-  // The returns of one round on one segment, with their signed distances along its normal, and
-  // the median of each half along it (filled for segments with min_points returns).
+  // One round's returns on one segment, their signed normal distances and per-half medians.
   struct Support {
     scan_matching::Points2 points;
     std::vector<double> residuals_m;
     std::vector<Half> halves;
   };
-  // The pose error of the round (x, y in the map frame, heading about the body) where the other
-  // walls and the motion prior put it, and its covariance (units: wall_sigma_m^2).
+  // The round's pose error (x, y map frame, heading) from the other walls and the prior;
+  // covariance in wall_sigma_m^2.
   struct PoseError {
     Eigen::Vector3d error;
     Eigen::Matrix3d covariance;
@@ -163,8 +127,7 @@ class PlanAdaptation {
   // nullopt when fewer than two references face the measured segment or they disagree.
   std::optional<PoseError> ErrorFromOthers(int measured, const std::vector<Support>& support,
                                            const RoundView& view) const;
-  // The segment's offset where the other walls put the entity; nullopt when they do not pin
-  // the pose down along its normal (min_other_information).
+  // The segment's offset where the other walls put the entity; nullopt if they do not pin its normal.
   std::optional<double> OffsetAgainstOthers(int measured, const std::vector<Support>& support,
                                             const RoundView& view) const;
   // Keeps ends_ in step with the plan after openings were cut.

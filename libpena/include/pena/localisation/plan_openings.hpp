@@ -1,11 +1,8 @@
 #pragma once
-// Openings the plan draws shut (the plan is partly wrong). A rough plan draws some walls
-// straight across real passages. The virtual scan then shows a wall where the laser sees far
-// through, and the rounds match whatever lies beyond onto it: office seed 7 walking south down the
-// passage at x 22, whose south end the plan closes, was pulled 1 m back along it in one round.
-// Seen from accepted rounds, returns far beyond such a wall (not just behind it, as behind a wall
-// drawn a little off) mark where it is open; a stretch open in several rounds and never seen as
-// wall is cut out of the segment.
+// Openings the plan draws shut. A wall drawn across a real passage makes the rounds match what
+// lies beyond onto it and pull the entity back along the passage; returns far beyond such a wall
+// in accepted rounds mark where it is open, and a stretch open in several rounds and rarely seen
+// as wall is cut out of the segment (docs/localisation.md, "Plan adaptation").
 
 #include <Eigen/Core>
 #include <vector>
@@ -18,17 +15,12 @@ namespace pena::localisation {
 // Options of the cuts (part of PlanAdaptationOptions; validated with them).
 struct PlanOpeningsOptions {
   bool enabled = true;
-  // A return counts as seen through a wall when its beam crosses the wall and it lies at least
-  // this far behind the wall's line. Behind a wall drawn a few tenths off the returns are that
-  // far behind it; through an opening they are metres beyond.
-  double through_margin_m = 1.0;
+  double through_margin_m = 1.0; // a return this far behind a wall it crossed is seen through it
   double bin_m = 0.1;          // the wall is judged in stretches of this length
   int min_through_points = 3;  // returns through one segment in a round for the round to count
   int min_rounds = 3;          // rounds that saw through a stretch before it may be cut
   double min_width_m = 0.4;    // narrower open stretches stay (a beam slipping past a door jamb)
-  // Returns within this of the wall count as the wall seen there: a stretch seen as wall in more
-  // than a third of the rounds that saw through it stays.
-  double hit_m = 0.15;
+  double hit_m = 0.15;         // returns this near are the wall seen (in > 1/3 of the rounds: it stays)
 };
 
 // One cut: the segment (its index before the cut), the open stretch along it in metres from its

@@ -14,11 +14,11 @@
 
 namespace pena::localisation {
 
-// Standard deviations of the edges; validated by SmoothTrajectory. The defaults were fitted on
-// office seeds 1-5 and checked on 6-10 (docs/localisation.md, "Offline smoothing").
+// Standard deviations of the edges; validated by SmoothTrajectory (docs/localisation.md,
+// "Offline smoothing").
 struct TrajectorySmootherOptions {
-  // An accepted plan round, per constrained direction (body frame) and in heading. Loose: a
-  // round's own along-corridor error is 0.13 m RMS on office, so many rounds are averaged.
+  // An accepted plan round, per constrained direction (body frame) and in heading; loose, so many
+  // rounds are averaged.
   double round_sigma_m = 0.2;
   double round_sigma_rad = 0.0174532925199433;  // 1 deg
   // A degenerate round along its weak direction (the odometry was kept there causally).
