@@ -31,9 +31,8 @@ class HeadingFilter {
   // Throws std::invalid_argument naming the field if an option is out of range.
   HeadingFilter(const HeadingFilterOptions& options, double initial_heading_rad, double stamp_s);
 
-  // Integrates the bias-corrected rate since the last gyro stamp. A gap longer than
-  // max_gyro_gap_s is not integrated (the rate is unknown over it): heading variance grows by the
-  // gap times a turn-rate allowance instead and kGyroGap is returned.
+  // Integrates the bias-corrected rate since the last gyro stamp; a gap over max_gyro_gap_s only
+  // grows the heading variance and returns kGyroGap.
   HeadingEvent Predict(const sensors::GyroSample& gyro);
 
   // Corrects heading and bias with a compass reading unless the innovation gate rejects it.

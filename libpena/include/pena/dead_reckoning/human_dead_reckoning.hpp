@@ -20,51 +20,22 @@ struct HumanDeadReckoningOptions {
   HeadingFilterOptions heading;
   double stride_sigma_fraction = 0.05;  // stride length error, fraction of the stride (SiLMU ~5%)
   double max_stride_m = 2.0;            // longer strides are sensor faults and are rejected
-  // The SiLMU reports a stride when it ends, so between reports the walker is up to a whole stride
-  // ahead of the last one (a 0-0.55 m saw tooth at 4 Hz scans). Between reports the position is
-  // carried forward at the last stride's pace (its length over the time since the stride before),
-  // at most one stride; the next report replaces the extrapolation. Only when that time is at most
-  // max_stride_period_s (longer: the walker had stopped, the pace is unknown). 0 disables it
-  // (the default: strides move the position at their reports only).
+  // Extrapolate the stride in progress at the last stride's pace if it took at most this (0 = off).
   double max_stride_period_s = 0.0;
-  // Without that extrapolation the position lags the walker by the stride in progress, and the
-  // prior's covariance holds it instead (PendingCovarianceAt): the walker is taken to be up to
-  // this pace ahead since the last report (at least the last stride's pace; the paper gives 1 m/s
-  // as the normal walking speed), at most the last stride (before the first, one second).
-  // 0 leaves the stride in progress out of the covariance.
+  // Pace the walker may be ahead of the last report, for the covariance of the stride in progress
+  // (PendingCovarianceAt; 0 leaves it out).
   double unreported_pace_m_s = 1.0;
-  // A walker whose next report is this many stride periods overdue has stopped, most often part of
-  // the way through the stride (the rest is in the first report after walking on): from then on,
-  // over one more period, the extrapolation falls back to stopped_stride_fraction of the stride.
-  // Carrying a whole stride through a stop puts it up to a stride ahead of a standing walker and
-  // makes the prior jump back at the next report (turns on the spot at corners and waypoints).
-  // Default 1 (the whole stride kept): 0.3 halves the worst prior jumps but was not better over
-  // the simulated missions (docs/dead-reckoning.md).
-  double stopped_after_periods = 1.2;
-  double stopped_stride_fraction = 1.0;
-  // People turn on the spot: while the gyro turns faster than this the stride in progress does not
-  // advance, and it keeps the heading it had when the turn started (0, the default: always
-  // advances; 1 rad/s measured with the above in docs/dead-reckoning.md).
-  double turning_on_the_spot_rad_s = 0.0;
-  // A walker whose next report is overdue and whose heading has turned by more than this since the
-  // last report is turning on the spot (or walking on slowly through a turn): the direction and
-  // length of the stride in progress are unknown, so it is dropped (the position goes back to the
-  // last report, its covariance widened by half a stride) until the next report. Carried on, it
-  // moves the prior by up to a stride the walker never walked (the next report replaces it with a
-  // stride along the new heading), and a keyframe taken meanwhile keeps that jump. 0 (the
-  // default): never dropped; 0.7854 (45 deg) measured in docs/dead-reckoning.md.
-  double overdue_turn_rad = 0.0;
-  // The stride scale learnt from position fixes (AddPositionFix), applied to every stride.
-  StrideCalibrationOptions stride_calibration;
-  // Each stride spread over the scans taken during it, by the record stream in front of the
-  // dead reckoning (StrideInterpolator; the offline tools apply it, pena-entity only with its
-  // pipeline.spread_strides): this model then receives the pieces as strides. On by default; it replaces the
-  // extrapolation above, so the two exclude each other.
+  double stopped_after_periods = 1.2;    // with extrapolation: a report this overdue means stopped ...
+  double stopped_stride_fraction = 1.0;  // ... and the extrapolation falls back to this share of a stride
+  double turning_on_the_spot_rad_s = 0.0;  // with extrapolation: no advance while turning faster (0 = off)
+  double overdue_turn_rad = 0.0;  // with extrapolation: drop an overdue stride after this turn (0 = off)
+  StrideCalibrationOptions stride_calibration;  // stride scale learnt from position fixes
+  // Each stride spread over its scans in front of this model (StrideInterpolator); excludes the
+  // extrapolation above.
   StrideInterpolationOptions stride_interpolation;
 };
 
-// The stride spreading options with the dead reckoning's own fault limit (max_stride_m): what
-// the spreading passes on whole is what this model rejects.
+// The stride spreading options with this model's fault limit (max_stride_m).
 StrideInterpolationOptions SpreadOptionsOf(const HumanDeadReckoningOptions& options);
 
 // A pose estimate with its covariance (x_m, y_m, theta_rad), mission frame.
@@ -80,9 +51,7 @@ struct StrideJump {
   double stride_start_s = 0.0;  // the report the extrapolation ran on from
   double stamp_s = 0.0;         // when the jump was made
   Eigen::Vector2d jump_m = Eigen::Vector2d::Zero();  // world frame
-  // The part of the jump that a pose taken at pose_stamp_s had accrued, the stride taken as
-  // walked evenly in time from stride_start_s to stamp_s: all of it for a pose at or after
-  // stamp_s, none for one before the stride began.
+  // The share of the jump a pose taken at pose_stamp_s had accrued (stride walked evenly in time).
   Eigen::Vector2d ShareAt(double pose_stamp_s) const;
 };
 
@@ -127,14 +96,10 @@ class HumanDeadReckoning {
   // Calibrates the stride scale (StrideCalibration); the estimate itself is not changed.
   void AddPositionFix(double stamp_s, const Eigen::Vector2d& world_position_m, bool continuous);
 
-  // The sum of the jumps the estimate made when a stride report replaced the extrapolated stride
-  // in progress, or overdue_turn_rad dropped it (world frame, m): corrections of a guess about
-  // the past, not motion. A pose taken before such a jump can be moved by the change in this sum
-  // (LaserOdometryOptions::keyframe_absorbs_stride_jumps). Reports without a known pace (nothing
-  // extrapolated: new motion) add nothing.
+  // Sum of the jumps made when a report replaced or dropped the extrapolated stride (world frame,
+  // m): corrections of a guess about the past, not motion.
   const Eigen::Vector2d& extrapolation_jumps_m() const { return extrapolation_jumps_m_; }
-  // The same jumps one by one, with the stride each corrects, since the last call (at most the
-  // latest kMaxPendingJumps; LaserOdometryOptions::keyframe_stride_jump_share).
+  // The same jumps one by one since the last call (at most the latest kMaxPendingJumps).
   std::vector<StrideJump> TakeStrideJumps();
   static constexpr std::size_t kMaxPendingJumps = 64;
 

@@ -1,11 +1,7 @@
 #pragma once
-// Online calibration of the stride sensor's scale from position fixes (scan matching).
-//
-// The SiLMU's length error is mostly a scale that stays with the wearer (the simulator draws one
-// per mission, N(0, 3 %) clamped to +-6 %). Where scan matching constrains the position in every
-// direction it measures how far the person really went; comparing that with the raw stride walk
-// over the same stretch gives the scale, which the dead reckoning then applies in corridors,
-// where the along-track position comes from the strides alone.
+// Online calibration of the stride sensor's scale from position fixes (scan matching): where the
+// position is fixed in every direction, the distance really walked against the raw stride walk
+// gives the scale, which then applies in corridors where the strides alone give the position.
 
 #include <Eigen/Core>
 #include <optional>
@@ -14,7 +10,7 @@ namespace pena::dead_reckoning {
 
 // Options of the calibration. Validated by StrideCalibration's constructor.
 struct StrideCalibrationOptions {
-  bool enabled = false;  // off by default: measured worse on the simulated missions (docs)
+  bool enabled = false;  // docs/dead-reckoning.md
   double interval_m = 2.0;        // raw stride walk between the two fixes of one sample
   double prior_weight_m2 = 8.0;   // weight of the prior scale 1, as sum of |walk|^2 (two 2 m samples)
   double max_correction = 0.2;    // the scale stays within [1 - max, 1 + max]

@@ -1,15 +1,10 @@
 #pragma once
 // Spreads each stride report over the scans taken during its stride, at the cost of a short delay.
 //
-// The SiLMU reports a stride when it ends, so a dead reckoning that moves only at reports is
-// behind the walker by anything from nothing to a whole stride at every scan: a saw tooth of up
-// to 0.55 m at 1 m/s. In a corridor the scan matcher cannot see the along-track position, so the
-// odometry inherits that saw tooth (docs/dead-reckoning.md). Extrapolating the last stride's pace
-// guesses the stride in progress and must take the guess back at the next report; waiting for
-// the report does not guess: the records of a stride are held until the report that ends it, and
-// the stride is then cut at every scan inside it, in proportion to time (the walker's pace is
-// steady within one step). The dead reckoning sees the same stream with the stride's pieces in
-// front of those scans, so its position at every report is exactly as before.
+// The SiLMU reports a stride when it ends, so a dead reckoning that moves only at reports lags the
+// walker by up to a stride at every scan, which the odometry inherits in corridors. The records of
+// a stride are held until the report that ends it, and the stride is cut at every scan inside it
+// in proportion to time; the position at every report is unchanged (docs/dead-reckoning.md).
 
 #include <cstddef>
 #include <deque>
@@ -23,16 +18,12 @@ namespace pena::dead_reckoning {
 // Validated by StrideInterpolator's constructor.
 struct StrideInterpolationOptions {
   bool enabled = true;
-  // A record waits at most this long (behind the latest stamp pushed) for its stride's report; a
-  // walker who stopped sends none, and the records go on as they are. This is the added latency.
-  double max_hold_s = 1.0;
-  // A report more than this after the previous one ends a stride begun after standing: it is
-  // taken to span the previous stride's period (default_stride_period_s for the first).
+  double max_hold_s = 1.0;  // longest wait for a stride's report (the added latency), s
+  // A report this long after the previous one ends a stride begun after standing (it spans the
+  // previous stride's period, or default_stride_period_s for the first).
   double max_stride_period_s = 1.5;
   double default_stride_period_s = 0.55;
-  // Reports outside [0, max_stride_m] or not finite are passed on whole, for the dead reckoning
-  // to reject (HumanDeadReckoningOptions::max_stride_m): cut up, a 40 m fault would be accepted.
-  double max_stride_m = 2.0;
+  double max_stride_m = 2.0;  // longer or non-finite reports pass whole, for the dead reckoning to reject
   // Bound on the records held (hostile streams whose stamps do not advance).
   std::size_t max_held_records = 20000;
 };
