@@ -35,19 +35,13 @@ struct CorrectionFilterOptions {
   // Added to every measurement: the global map's own wall error. Metres, radians.
   double map_sd_m = 0.10;
   double map_sd_rad = 0.015;
-  // A prediction more precise than this (position sd, metres) is not updated: the map, whose
-  // walls are off by map_sd_m in places (shifted plan walls, drifted entities) in a correlated
-  // way, would only pull it towards its own errors. Keeps a robot with good odometry as it is.
+  // A prediction with a position sd below this is not updated: the map's correlated errors would
+  // only pull it towards themselves. Metres.
   double min_update_sd_m = 0.05;
   // Translation eigenvalue ratio (min / max) of J^T J below which the weak axis is dropped.
   double degenerate_eigen_ratio = 0.05;
-  // Squared Mahalanobis distance of the innovation above which a match is refused (chi^2, 3 dof:
-  // 16.3 is 99.9 %).
-  double gate_mahalanobis_sq = 16.3;
-  // A refused match (weak, or outside the gate) multiplies the position and heading variances by
-  // this: the odometry may have jumped (a failed scan match), so the next window is wider and
-  // the gate looser, as MapLocaliser grows its window after failed rounds. Unitless, >= 1.
-  double refused_growth = 1.5;
+  double gate_mahalanobis_sq = 16.3;  // innovation gate (chi^2, 3 dof: 99.9 %)
+  double refused_growth = 1.5;  // a refused match multiplies the variances by this, >= 1
   // The match window covers +- this many standard deviations of the prediction ...
   double window_sigmas = 3.0;
   // ... but at least this (full extents), metres / radians, and at most the options' window.
