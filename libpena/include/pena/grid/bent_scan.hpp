@@ -50,10 +50,8 @@ class BentScanLeveller {
                                        const sensors::LaserScan& scan,
                                        const geometry::Pose2& world_from_laser) const;
 
-  // The scan as a level laser would have measured it: the tilt is asin(laser_height_m /
-  // floor distance) about the floor line's direction; each range becomes its horizontal part,
-  // r sqrt(1 - (cos(angle to the line's normal) sin(tilt))^2), and the returns at the floor line
-  // (within floor_band of its distance) become NaN (ignored: neither hit nor free space).
+  // The scan as a level laser would have measured it: ranges reduced to their horizontal part,
+  // returns at the floor line set to NaN (neither hit nor free space).
   sensors::LaserScan Level(const sensors::LaserScan& scan, const FloorLine& floor) const;
 
   const BentScanOptions& options() const { return options_; }

@@ -16,16 +16,12 @@ namespace pena::io {
 struct ReadOptions {
   // Skip malformed lines (counted in LogSource::skipped()) instead of throwing.
   bool skip_malformed = false;
-  // CARMEN FLASER lines do not state the maximum range; ranges at or above it are no-returns.
-  // 50 m fits every dataset log (aces codes no-returns as 50, intel/mit as 81.8-81.9, no real
-  // return exceeds 42.4 m) except orebro (codes 32.76: use 32.7); see docs/formats.md.
+  // CARMEN ranges at or above this are no-returns (FLASER does not state it; docs/formats.md).
   double carmen_max_range_m = 50.0;
   // CARMEN FLASER lines with 180 beams: true spreads them over 180 deg (180/179 deg steps),
   // false uses 1 deg steps from -90 deg. docs/evaluation.md shows 1 deg fits.
   bool carmen_180_beams_span_180_deg = false;
-  // CARMEN lines do not state how long a scan takes (LaserGeometry::sweep_s). The Freiburg and
-  // radish logs come from SICK LMS 2xx lasers, whose mirror turns at 75 Hz: 1/150 s for the
-  // 180 deg field. 0: every beam at the stamp. docs/odometry.md, "Scan deskew".
+  // Sweep time given to CARMEN scans (SICK LMS 2xx: 1/150 s; 0: every beam at the stamp), s.
   double carmen_sweep_s = 1.0 / 150.0;
   // Sweeps interleaved into one CARMEN scan (LaserGeometry::interlace). 0: from the beam spacing,
   // as a SICK LMS 2xx takes finer steps than 1 deg: 0.5 deg in 2 turns, 0.25 deg in 4.

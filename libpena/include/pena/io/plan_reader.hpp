@@ -20,12 +20,9 @@ struct PlanOptions {
 // "plan.unit_scale_m must be > 0 and finite (m per drawing unit), got 0".
 void ValidatePlanOptions(const PlanOptions& options);
 
-// Reads an a priori plan by extension (case-insensitive): line CSV (.csv, .csv.gz), SVG (line,
-// polyline, polygon, rect, path with M/L/H/V/Z absolute and relative; transforms applied; y
-// flipped so the drawing's up is +y) or DXF (LINE, LWPOLYLINE incl. closed flag, POLYLINE/VERTEX).
-// Scales by unit_scale_m, then maps by mission_from_plan; segments in the mission frame, metres.
-// Zero-length segments are dropped. Throws InputError "path:line: what" on bad files and
-// std::invalid_argument on bad options.
+// Reads an a priori plan (line CSV, SVG or DXF by extension; docs/formats.md, "Plans") scaled by
+// unit_scale_m and mapped by mission_from_plan: segments in the mission frame, metres. Throws
+// InputError "path:line: what" on bad files and std::invalid_argument on bad options.
 std::vector<geometry::Segment2> ReadPlan(const std::filesystem::path& path,
                                          const PlanOptions& options = {});
 

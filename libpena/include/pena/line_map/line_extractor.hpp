@@ -31,21 +31,17 @@ struct LineExtractionOptions {
   double merge_angle_rad = 0.0873;  // 5 deg
   // Segments shorter than this are dropped. Metres, >= 0.
   double min_length_m = 0.30;
-  // A segment must rest on cells hit by at least this many different scans, when the grid image
-  // records first and last hitting scans (counted from those: exact for 2, a lower bound above):
-  // a floor reflection is the line of hits of one tilted scan that no later beam crossed; a wall
-  // is hit again. 0 or 1 = off.
+  // Different scans that must hit a segment's cells (a floor reflection is one tilted scan's hits;
+  // needs GridImage's first/last scan records). 0 or 1 = off.
   int min_scans = 2;
 };
 
 // Throws std::invalid_argument naming the field and its unit when an option is out of range.
 void ValidateLineExtractionOptions(const LineExtractionOptions& options);
 
-// The walls of `grid` as segments in the grid's (world) frame, metres, ids 0..n-1. Each carries
-// its supporting occupied cells, observations (the laser hits on them, from
-// GridImage::hit_counts; without it, one per cell) and the RMS distance of those cells to the
-// line. Throws
-// std::invalid_argument for invalid options or a grid that is not CV_8UC1 with resolution_m > 0.
+// The walls of `grid` as segments in the grid's (world) frame, metres, ids 0..n-1, with support,
+// observations (hit_counts, else one per cell) and RMS fit error. Throws std::invalid_argument
+// for invalid options or a grid that is not CV_8UC1 with resolution_m > 0.
 std::vector<LineSegment> ExtractLines(const grid::GridImage& grid,
                                       const LineExtractionOptions& options = {});
 

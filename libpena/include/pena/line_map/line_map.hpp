@@ -19,13 +19,11 @@ struct LineMapOptions {
   double merge_distance_m = 0.10;       // endpoints of the shorter within this of the longer's line
   double merge_angle_rad = 0.17453292519943295;  // 10 deg: directions (mod pi) at most this apart
   double max_gap_m = 0.30;              // along the line: overlapping or at most this far apart
-  // Bounded drift (docs/line-map.md, "Bounded drift"); 0 = off, the default. When > 0, a fresh
-  // segment moves the line of the stored walls it matches only if both its endpoints lie within
-  // this distance of that line; otherwise it only extends the line's span and adds its counts.
+  // Bounded drift (docs/line-map.md): a fresh segment moves a matched wall's line only if both its
+  // ends lie within this of it, else only extends its span. 0 = off.
   double refit_band_m = 0.0;
-  // With refit_band_m > 0: a fresh segment's first matching round uses this distance instead of
-  // merge_distance_m, so a near duplicate is absorbed (span only) by the wall it copies rather
-  // than added; <= merge_distance_m = off. Keep it below the spacing of parallel walls (0.3 m).
+  // With refit_band_m > 0: a near duplicate within this is absorbed (span only) by the wall it
+  // copies; <= merge_distance_m = off. Keep it below the spacing of parallel walls.
   double absorb_distance_m = 0.0;
 };
 

@@ -115,11 +115,8 @@ class EntityPipeline {
   // be empty.
   line_map::MapDelta Flush();
 
-  // Localises against an a priori plan (map frame, metres) from now on: at every reference
-  // change of the odometry the scan is matched against a virtual scan of the plan
-  // (localisation::MapLocaliser) and an accepted round moves map_from_odom, so the scan and the
-  // later ones are placed on the plan. Throws std::invalid_argument for an empty plan or bad
-  // options.plan_localisation.
+  // Localises against an a priori plan (map frame, metres) at every reference change from now on.
+  // Throws std::invalid_argument for an empty plan or bad options.plan_localisation.
   void SetPlan(std::vector<geometry::Segment2> plan_m);
   bool has_plan() const { return localiser_ != nullptr; }
   // The plan walls the localiser moved where it saw them (plan adaptation); empty without a plan.

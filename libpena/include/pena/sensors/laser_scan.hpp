@@ -16,14 +16,10 @@ struct LaserGeometry {
   double angle_min_rad = 0.0;
   double angle_increment_rad = 0.0;
   double max_range_m = 0.0;  // ranges at or beyond this are no-returns
-  // Time from the first beam to the last; beams are taken in index order, evenly in time. 0: all
-  // beams at once (the simulator). A SICK LMS 2xx turns its mirror at 75 Hz, so a 180 deg field
-  // takes 1/150 s, while the platform may turn by a degree (docs/odometry.md, "Scan deskew").
+  // Time from the first beam to the last, beams in index order evenly in time; 0: all at once. s.
   double sweep_s = 0.0;
-  // Sweeps interleaved into one scan, each over the whole field, one mirror turn apart: beam i
-  // belongs to sweep i mod interlace. A SICK LMS 2xx at 0.5 deg (361 beams) takes its even beams
-  // in one turn and its odd beams in the next, 1/75 s later (docs/odometry.md, "Interlaced
-  // scans"). The turn takes sweep_s * 2 pi / field, the field being the beams' span.
+  // Sweeps interleaved into one scan, one mirror turn (sweep_s * 2 pi / field) apart: beam i
+  // belongs to sweep i mod interlace (docs/odometry.md, "Interlaced scans").
   int interlace = 1;
   static constexpr int kMaxInterlace = 16;  // SICK lasers interleave at most 4 turns (0.25 deg)
 };

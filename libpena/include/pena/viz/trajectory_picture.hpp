@@ -29,8 +29,7 @@ struct TrajectoryPicture {
 // Picture layout and budget.
 struct TrajectoryPictureOptions {
   MapCanvasOptions canvas = DefaultCanvas();  // 5 cm/px, <= 2000 px, legend panel right
-  // Cap on scan points drawn (one pixel each): above it every k-th scan is drawn, k the smallest
-  // that fits. The default draws every scan of the intel log (13631 scans, ~2.4 M returns).
+  // Cap on scan points drawn (one pixel each): above it every k-th scan, k the smallest that fits.
   std::size_t max_scan_points = 3000000;
   // The box is fitted to the path plus this central fraction of the scan points in x and y,
   // so a few stray long returns do not shrink the map.
