@@ -15,8 +15,8 @@ struct DaemonLogging {
 };
 
 // Calls `build` (bad options or logging: "<name>: what" on stderr, EXIT_FAILURE), installs the
-// stop signals and the crash report (crash_report.hpp) and returns what `run` returns; a DdsError escaping `run` exits 2, any other
-// exception EXIT_FAILURE, both logged as critical.
+// stop signals and the crash report and returns what `run` returns; a DdsError escaping `run`
+// exits 2, any other exception EXIT_FAILURE, both logged as critical.
 int RunDaemon(const std::string& name, const std::function<DaemonLogging()>& build,
               const std::function<int()>& run);
 

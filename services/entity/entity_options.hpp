@@ -27,15 +27,11 @@ struct EntityServiceOptions {
   double range_quantum_m = 0.01;
   double linger_s = 2.0;              // wall seconds to wait for acknowledgements at the end
   double wait_for_readers_s = 0.0;    // wall seconds to wait for a line-map reader at the start
-  // The start pose is unknown: the chain runs in the entity's own frame (its first pose is the
-  // origin), the status says so, and the fusion places it (docs/services.md, "Unknown start").
-  // Command line only (--unknown-start).
+  // The chain runs in the entity's own frame until the fusion places it (docs/services.md,
+  // "Unknown start"). Command line only (--unknown-start).
   bool start_unknown = false;
-  // Lockstep with a pena-fusion run with --lockstep and --correction-interval of the same value
-  // (mission seconds; 0 = off): after a reference scan the fusion will attempt (the first, then
-  // each one at least this much mission time after the last attempted one) the entity waits
-  // for the fusion's answer before it goes on, and the log's pacing waits with it, so its
-  // corrections do not depend on the machine's load. Command line only (--await-corrections).
+  // Lockstep with pena-fusion --lockstep --correction-interval of the same value (mission s; 0 =
+  // off): wait for the fusion's answer at the scans it attempts. Command line only.
   double await_corrections_s = 0.0;
   // input "dds": the live sensor topics (entity_id required; live.entity_id is set from it).
   LiveSensorOptions live;

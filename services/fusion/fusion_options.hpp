@@ -14,15 +14,11 @@
 
 namespace pena::services {
 
-// pena-fusion's participant profile when none is given (config dds.participant_profile or
-// --profile): pena_loopback without shared memory (deploy/dds/pena-loopback.xml). A fusion
-// restarted after kill -9 reuses its predecessor's ports; over Fast DDS 2.9.1 shared memory the
-// entities' channels to them sometimes stay dead and the restarted fusion hears nothing
-// (docs/fusion-service.md, "Persistence and restart").
+// pena-fusion's default participant profile: loopback without shared memory, whose channels may
+// stay dead for a fusion restarted after kill -9 (docs/fusion-service.md, "Persistence and restart").
 inline constexpr const char* kFusionParticipantProfile = "pena_loopback_udp";
 
-// A robot's laser odometry drifts far less than a person's (docs/demo.md: 0.02 m RMS against
-// 0.7-0.8 m in the team mission), so its corrections get a far smaller gain.
+// A robot's laser odometry drifts far less than a person's, so its corrections get a far smaller gain.
 inline fusion::CorrectionFilterOptions RobotFilterDefaults() {
   fusion::CorrectionFilterOptions options;
   options.initial_sd_m = 0.02;
@@ -33,9 +29,8 @@ inline fusion::CorrectionFilterOptions RobotFilterDefaults() {
   return options;
 }
 
-// With the filter the window follows the entity's uncertainty (0.3 m after a correction), so
-// the widest one can be larger than ComputeCorrection's default: 2.4 m x 2.4 m x 20 deg lets a
-// firefighter whose odometry jumped by a metre be found again.
+// The widest correction window when the filter sizes it by the entity's uncertainty (2.4 m x
+// 2.4 m x 20 deg: a firefighter whose odometry jumped by a metre is found again).
 inline fusion::CorrectionOptions WideCorrectionWindow() {
   fusion::CorrectionOptions options;
   options.window.size_x_m = 2.4;
@@ -51,25 +46,20 @@ struct FusionServiceOptions {
   fusion::FusionStoreOptions store;   // silent_after_s, checkpoint_every, merge options
   bool corrections = true;            // match reference scans and send corrections
   double correction_interval_s = 1.0; // seconds between attempts per entity (wall; lockstep: mission)
-  // Lockstep with entities run with --await-corrections (a test and demo mode, docs/
-  // fusion-service.md "Lockstep"): attempts are scheduled on the scans' own stamps
-  // (correction_interval_s in mission seconds), none is superseded or dropped as stale, and
-  // every attempt is answered (a correction, or a Correction with confidence 0: nothing to
-  // apply), so the entity that waits for the answer sees the same corrections however loaded
-  // the machine is. Command line only (--lockstep).
+  // Lockstep with entities run with --await-corrections: every attempt, scheduled on mission time,
+  // is answered (docs/fusion-service.md, "Lockstep"). Command line only (--lockstep).
   bool lockstep = false;
   // Lockstep: the order deltas are applied and scans attempted in (lockstep_order.hpp), so the
   // global map is the same on every run too. Command line only.
   LockstepOrderOptions lockstep_order;
-  // A reference scan that waited longer than this for the correction worker is dropped (the
-  // entity's next one gets the next chance): the 200 ms latency budget minus a match.
-  // Wall seconds; 0 = never dropped.
+  // A reference scan waiting longer than this for the correction worker is dropped (the 200 ms
+  // latency budget minus a match). Wall seconds; 0 = never dropped.
   double correction_max_wait_s = 0.15;
   double correction_min_m = 0.03;     // smaller raw corrections are not sent (metres); filtered
                                       // ones always are (the filter counted them as applied)
   double correction_min_rad = 0.01;   // ... (radians)
-  // Blend corrections with each entity's pose uncertainty (fusion::CorrectionFilter); false:
-  // the raw match replaces the pose (the behaviour before the filter, for comparison).
+  // Blend corrections with each entity's pose uncertainty (fusion::CorrectionFilter); false: the
+  // raw match replaces the pose (for comparison).
   bool filter_corrections = true;
   fusion::CorrectionOptions correction = WideCorrectionWindow();  // the match (widest window)
   fusion::CorrectionFilterOptions human_filter;   // laser odometry of a walking person

@@ -34,9 +34,8 @@ struct SensorMergerOptions {
   // Sensor seconds a record is held for records of other topics that may still arrive older.
   // >= 0 and finite; 0 releases in arrival order (refusing only what goes back in time).
   double reorder_window_s = 0.2;
-  // Records held at most; beyond it the oldest is released whatever the window. A publisher
-  // whose clock stands still never lets a record become ready, and held records must not grow
-  // without bound. >= 1; the default holds 100 s of a 100 Hz sensor.
+  // Records held at most; beyond it the oldest is released whatever the window (a publisher whose
+  // clock stands still). >= 1.
   std::size_t max_held = 10000;
 };
 
