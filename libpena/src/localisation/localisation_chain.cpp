@@ -77,7 +77,7 @@ struct LocalisationChain::Impl {
     if (lost_rounds == 0) {
       relocaliser.reset();
     } else if (lost_rounds >= options.relocalise_after_rounds && !relocaliser && compass_heading_rad) {
-      // Every heading: the loss may be a heading error beyond the window (office seed 13).
+      // Every heading: the loss may be a heading error beyond the window.
       if (!global) global = std::make_unique<GlobalLocaliser>(map.scanner().segments(), options.global);
       relocaliser = std::make_unique<GlobalTracker>(*global, options.tracker);
     }

@@ -91,8 +91,8 @@ MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
   } else if (found && round.degenerate && options.along_search_m > 0.0 &&
              ((round.accepted && on_prior) || (!round.accepted && options.along_search_failed))) {
     // The odometry's own position along the weak direction came from its motion prior, which
-    // may have slid (office seed 1 at 166.5 s: 0.47 m along the corridor in one keyframe), or
-    // the plan does not fit where the odometry put the entity (along_search_failed).
+    // may have slid by half a metre in one keyframe, or the plan does not fit where the odometry
+    // put the entity (along_search_failed).
     if (auto along = AlongSearch(scan, real, round, *found)) round = *along;
   }
   // The ends first: a round they move back is pinned by them, wherever the match's optimum lay.

@@ -18,8 +18,8 @@ namespace internal {
 // What one search found: the correction (weak direction dropped where the scan does not
 // constrain it), the weak translation direction of the refinement (body frame), and whether the
 // search's best grid pose lies inside its window, not on its edge (only such an optimum is
-// re-judged: one on the edge was not searched around, and re-casting there chained corrections
-// beyond the window along office seed 3's corridor).
+// re-judged: one on the edge was not searched around, and re-casting there chains corrections
+// beyond the window along a corridor).
 struct Found {
   geometry::Pose2 correction;
   Eigen::Vector2d weak = Eigen::Vector2d::UnitX();

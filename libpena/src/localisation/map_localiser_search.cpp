@@ -89,7 +89,7 @@ Found MapLocaliser::Impl::Judge(const scan_matching::MatchResult& match,
       status == MapStatus::kOutsideMap ? options.reacquire_min_score : options.min_score;
   // The least-squares refinement after the search is not bounded by the window. It may finish a
   // little beyond it, but a correction more than twice the searched half-extent was not searched
-  // for (intel: a -17 deg turn out of a +/-2 deg window lost the entity for good).
+  // for, and taking it may throw the entity off for good.
   const geometry::Pose2& found = match.reference_from_scan;
   const bool in_window = std::abs(found.x_m) <= searched.size_x_m &&
                          std::abs(found.y_m) <= searched.size_y_m &&
@@ -147,15 +147,15 @@ std::optional<MapCorrection> MapLocaliser::Impl::AlongSearch(const sensors::Lase
     MapCorrection candidate = Recast(scan, real, round, moved);
     scores.emplace_back(along_m, candidate.score);
     // Only a place the scan pins down there (door frames, a corridor end) can tell, and it
-    // needs the evidence of a re-acquisition: a search this wide errs more (the team building's
-    // disturbed-compass walk took a place 1.3 m off that scored 0.68).
+    // needs the evidence of a re-acquisition: a search this wide errs more (a look-alike more than
+    // a metre off can score well below that).
     if (!candidate.accepted || candidate.degenerate || candidate.score < options.reacquire_min_score) continue;
     if (!best || candidate.score > best->score) best = candidate, best_along_m = along_m;
   }
   if (!best || best->score < round.score + options.along_min_drop) return std::nullopt;
   // The place must stand out from the others searched, not only from the expected one: along a
   // passage whose plan fits about as well everywhere, the best of flat scores is a coin toss
-  // (office seed 8 at 98.0 s: 0.835 at +1 m against 0.818 at -1 m; taken, 1.3 m off).
+  // (two places a metre either way may score within 0.02 of each other).
   if (options.along_search_unique &&
       !StandsOut(scores, best_along_m, best->score, 2.0 * options.along_search_step_m, options.along_min_drop)) {
     return std::nullopt;

@@ -61,7 +61,7 @@ bool DenseAtItsEnd(const Run& run, const PlanEndOptions& options) {
 // Whether the laser saw past the run's last return: the nearest return beyond it in bearing
 // (within past_rad, on the side the wall would go on) lies past_m farther away. Otherwise the
 // wall may go on behind something in front of it, or where the plan stops drawing it (a line
-// map's segment ending at clutter: aces).
+// map's segment ending at clutter).
 bool SeenPast(const scan_matching::Points2& points, const Run& run, const Eigen::Vector2d& origin_m,
               const Eigen::Vector2d& outward, const PlanEndOptions& options) {
   const Eigen::Vector2d& last = points[run.indices.back()];

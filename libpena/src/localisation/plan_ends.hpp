@@ -1,10 +1,9 @@
 #pragma once
 // The plan's free wall ends as references of the plan adaptation (internal; docs/localisation.md,
 // "Plan adaptation"). A wall's line says nothing about the position along it, but where a wall
-// stops at a door jamb or a corridor's end does. Along a corridor, the walls drawn off across it
-// (the office plan's east end: the rooms' end walls 0.3 m east, seen through the doors) were
-// the only references along it, and the rounds matched onto them; the corridor walls' own ends
-// there (the door jambs, the corridor's end) are drawn right and pin that direction down.
+// stops at a door jamb or a corridor's end does. Where the walls across a corridor are drawn off
+// they are the only references along it and the rounds match onto them; the corridor walls' own
+// ends (door jambs, the corridor's end), when drawn right, pin that direction down.
 //
 // A drawn end is measured where the returns along its wall's line stop: the farthest return of a
 // dense run towards the end, when the laser saw past it (the next returns beyond it in bearing lie

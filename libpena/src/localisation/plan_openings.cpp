@@ -16,7 +16,7 @@ void Require(bool ok, const std::string& field, const std::string& rule, double 
 double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Beams that cross a wall this near an end it was drawn with slip past corners and door jambs
-// (0.15 m cut a real wall's first 0.4 m at a corner on team seed 2, ff1).
+// (a smaller margin cuts real walls at corners).
 constexpr double kEndSkipM = 0.5;
 // Parts of a cut segment shorter than this are dropped.
 constexpr double kKeepM = 0.1;
