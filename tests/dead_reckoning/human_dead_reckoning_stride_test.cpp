@@ -119,9 +119,8 @@ TEST(HumanDeadReckoning, ResetMidStrideWithAHeadingCorrectionHoldsAtItsStamp) {
   EXPECT_NEAR(after.world_from_body.y_m, 0.1 + 0.3 * std::sin(0.2), 1e-9);
 }
 
-// Office seed 2's regression (RMSE 0.35 -> 0.94 m with the first version): the walker stops
-// mid-stride and turns on the spot. The stride in progress must stay where it was heading when
-// the next report became due, not swing round with the body.
+// The walker stops mid-stride and turns on the spot. The stride in progress must stay where it
+// was heading when the next report became due, not swing round with the body.
 TEST(HumanDeadReckoning, TurningOnTheSpotAfterStoppingDoesNotSwingTheStride) {
   HumanDeadReckoning dead_reckoning(Carried(), StartAt(0.0, 0.0, 0.0));
   WalkStraight(dead_reckoning, 4);  // at 2.4 m at t = 2.0 s, the next report due at 2.5 s

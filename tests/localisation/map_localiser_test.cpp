@@ -276,8 +276,8 @@ std::vector<double> MapLocaliserTest::AlongErrors(const MapLocaliserOptions& opt
   return errors;
 }
 
-// Known limit (a motion gate that held such jumps was measured worse on office and removed;
-// docs/localisation.md): a single-scan jump of the odometry is output as it is.
+// Known limit (docs/localisation.md, "Alternatives measured and not adopted"): a single-scan
+// jump of the odometry is output as it is.
 TEST_F(MapLocaliserTest, ASingleScanJumpOfTheOdometryIsOutput) {
   const std::vector<double> errors = AlongErrors({}, 18.46, /*round_at_jump=*/false);
   ASSERT_EQ(errors.size(), 10u);
