@@ -73,6 +73,9 @@ TEST(RelationErrorTest, SummarisesMeanAndStdOfErrorsAndSquares) {
   EXPECT_NEAR(summary.rotation_deg.std, 1.0, kTol);
   EXPECT_NEAR(summary.rotation_sq_deg2.mean, 2.0, 1e-7);  // (0 + 4) / 2
   EXPECT_NEAR(summary.rotation_sq_deg2.std, 2.0, 1e-7);
+  EXPECT_NEAR(summary.translation_spread_m.median, 0.1, kTol);
+  EXPECT_NEAR(summary.translation_spread_m.max, 0.3, kTol);
+  EXPECT_NEAR(summary.rotation_spread_deg.max, 2.0, 1e-7);
 }
 
 TEST(RelationErrorTest, SkipsAndCountsRelationsWithStampsNotInTrajectory) {

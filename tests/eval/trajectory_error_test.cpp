@@ -56,6 +56,18 @@ TEST(TrajectoryErrorTest, ConstantHeadingOffsetGivesHeadingRmseInDegrees) {
   const TrajectoryErrorSummary summary = EvaluateAgainstTruth(estimate, truth);
   EXPECT_NEAR(summary.heading_rmse_deg, 0.05 * 180.0 / std::numbers::pi, kTol);
   EXPECT_NEAR(summary.translation_rmse_m, 0.0, kTol);
+  EXPECT_NEAR(summary.max_heading_error_deg, 0.05 * 180.0 / std::numbers::pi, kTol);
+  EXPECT_NEAR(summary.final_heading_error_deg, 0.05 * 180.0 / std::numbers::pi, kTol);
+}
+
+TEST(TrajectoryErrorTest, FinalHeadingErrorIsTheLastPosesNotTheWorst) {
+  const geometry::Trajectory truth = CurvedTruth();
+  geometry::Trajectory estimate = truth;
+  estimate[5].pose.theta_rad += 0.2;   // a heading jump that is corrected again
+  estimate.back().pose.theta_rad -= 0.03;
+  const TrajectoryErrorSummary summary = EvaluateAgainstTruth(estimate, truth);
+  EXPECT_NEAR(summary.max_heading_error_deg, 0.2 * 180.0 / std::numbers::pi, kTol);
+  EXPECT_NEAR(summary.final_heading_error_deg, 0.03 * 180.0 / std::numbers::pi, kTol);
 }
 
 TEST(TrajectoryErrorTest, AlignmentRemovesRigidTransformExactly) {

@@ -79,6 +79,13 @@ void PrintRelationTable(const EvalArgs& args, const eval::RelationErrorSummary& 
   PrintRelationRow("translation^2 [m^2]", summary.translation_sq_m2, 4);
   PrintRelationRow("rotation [deg]", summary.rotation_deg, 3);
   PrintRelationRow("rotation^2 [deg^2]", summary.rotation_sq_deg2, 3);
+  std::printf("  %-22s %14s %14s %14s\n", "", "median", "95th pct", "max");
+  const auto spread_row = [](const char* label, const eval::Spread& value, int decimals) {
+    std::printf("  %-22s %14s %14s %14s\n", label, Fixed(value.median, decimals).c_str(),
+                Fixed(value.p95, decimals).c_str(), Fixed(value.max, decimals).c_str());
+  };
+  spread_row("translation [m]", summary.translation_spread_m, 4);
+  spread_row("rotation [deg]", summary.rotation_spread_deg, 3);
 }
 
 void PrintTruthTable(const EvalArgs& args, const eval::TrajectoryErrorSummary& summary) {
@@ -98,6 +105,10 @@ void PrintTruthTable(const EvalArgs& args, const eval::TrajectoryErrorSummary& s
               Fixed(summary.max_translation_error_m, 4).c_str());
   std::printf("  %-28s %12s\n", "final position error [m]",
               Fixed(summary.final_position_error_m, 4).c_str());
+  std::printf("  %-28s %12s\n", "max heading error [deg]",
+              Fixed(summary.max_heading_error_deg, 3).c_str());
+  std::printf("  %-28s %12s\n", "final heading error [deg]",
+              Fixed(summary.final_heading_error_deg, 3).c_str());
   std::printf("  %-28s %12s\n", "truth path length [m]",
               Fixed(summary.truth_path_length_m, 3).c_str());
   std::printf("  %-28s %12s\n", "final error [% of path]",
@@ -168,6 +179,11 @@ std::string LinesJson(const EvalArgs& args, const eval::LineMapErrorSummary& sum
          ", \"angle_tolerance_deg\": " + JsonNumber(args.angle_tolerance_deg) + "}";
 }
 
+std::string JsonSpread(const eval::Spread& value) {
+  return "{\"median\": " + JsonNumber(value.median) + ", \"p95\": " + JsonNumber(value.p95) +
+         ", \"max\": " + JsonNumber(value.max) + "}";
+}
+
 std::string RelationJson(const EvalArgs& args, const eval::RelationErrorSummary& summary) {
   return "{\"file\": " + JsonString(args.relations) +
          ", \"used\": " + std::to_string(summary.relations_used) +
@@ -175,7 +191,9 @@ std::string RelationJson(const EvalArgs& args, const eval::RelationErrorSummary&
          ", \"translational_error_m\": " + JsonMeanStd(summary.translation_m) +
          ", \"translational_error_sq_m2\": " + JsonMeanStd(summary.translation_sq_m2) +
          ", \"rotational_error_deg\": " + JsonMeanStd(summary.rotation_deg) +
-         ", \"rotational_error_sq_deg2\": " + JsonMeanStd(summary.rotation_sq_deg2) + "}";
+         ", \"rotational_error_sq_deg2\": " + JsonMeanStd(summary.rotation_sq_deg2) +
+         ", \"translational_error_spread_m\": " + JsonSpread(summary.translation_spread_m) +
+         ", \"rotational_error_spread_deg\": " + JsonSpread(summary.rotation_spread_deg) + "}";
 }
 
 std::string TruthJson(const EvalArgs& args, const eval::TrajectoryErrorSummary& summary) {
@@ -190,6 +208,8 @@ std::string TruthJson(const EvalArgs& args, const eval::TrajectoryErrorSummary& 
          ", \"heading_rmse_deg\": " + JsonNumber(summary.heading_rmse_deg) +
          ", \"max_translation_error_m\": " + JsonNumber(summary.max_translation_error_m) +
          ", \"final_position_error_m\": " + JsonNumber(summary.final_position_error_m) +
+         ", \"max_heading_error_deg\": " + JsonNumber(summary.max_heading_error_deg) +
+         ", \"final_heading_error_deg\": " + JsonNumber(summary.final_heading_error_deg) +
          ", \"truth_path_length_m\": " + JsonNumber(summary.truth_path_length_m) +
          ", \"final_error_percent_of_path\": " + JsonNumber(summary.final_error_percent_of_path) +
          "}";

@@ -78,6 +78,8 @@ RelationErrorSummary EvaluateRelations(const geometry::Trajectory& estimate,
   summary.translation_sq_m2 = ComputeMeanStd(translation_sq_m2);
   summary.rotation_deg = ComputeMeanStd(rotation_deg);
   summary.rotation_sq_deg2 = ComputeMeanStd(rotation_sq_deg2);
+  summary.translation_spread_m = ComputeSpread(translation_m);
+  summary.rotation_spread_deg = ComputeSpread(rotation_deg);
   return summary;
 }
 

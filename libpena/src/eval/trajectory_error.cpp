@@ -73,6 +73,7 @@ TrajectoryErrorSummary EvaluateAgainstTruth(const geometry::Trajectory& estimate
   double sum_sq_m2 = 0.0;
   double sum_heading_sq_rad2 = 0.0;
   double last_error_m = 0.0;
+  double last_heading_error_deg = 0.0;
   for (const auto& [i, j] : matches) {
     const geometry::Pose2 aligned =
         geometry::Compose(summary.truth_from_estimate, estimate[i].pose);
@@ -82,12 +83,15 @@ TrajectoryErrorSummary EvaluateAgainstTruth(const geometry::Trajectory& estimate
         geometry::NormalizeAngle(aligned.theta_rad - true_pose.theta_rad);
     sum_sq_m2 += last_error_m * last_error_m;
     sum_heading_sq_rad2 += heading_error_rad * heading_error_rad;
+    last_heading_error_deg = std::abs(heading_error_rad) * kDegPerRad;
+    summary.max_heading_error_deg = std::max(summary.max_heading_error_deg, last_heading_error_deg);
     summary.max_translation_error_m = std::max(summary.max_translation_error_m, last_error_m);
   }
   const double n = static_cast<double>(matches.size());
   summary.translation_rmse_m = std::sqrt(sum_sq_m2 / n);
   summary.heading_rmse_deg = std::sqrt(sum_heading_sq_rad2 / n) * kDegPerRad;
   summary.final_position_error_m = last_error_m;
+  summary.final_heading_error_deg = last_heading_error_deg;
   // All truth samples between the first and last matched stamp, not only the matched ones: a
   // sparse estimate would otherwise shorten the path to chords and inflate the percentage.
   summary.truth_path_length_m = PathLength(truth, matches.front().second, matches.back().second);

@@ -1,5 +1,6 @@
 #pragma once
-// Mean and standard deviation of a sample, the summary every error table in eval reports.
+// Summaries of a sample that every error table in eval reports: mean and standard deviation, and
+// the order statistics (median, 95th percentile, maximum) that show a rare large error.
 
 #include <vector>
 
@@ -13,5 +14,18 @@ struct MeanStd {
 
 // Summarises `values`; an empty sample gives {0, 0}.
 MeanStd ComputeMeanStd(const std::vector<double>& values);
+
+// Order statistics of a sample, in the sample's unit.
+struct Spread {
+  double median = 0.0;
+  double p95 = 0.0;  // 95th percentile (nearest rank)
+  double max = 0.0;
+};
+
+// The nearest-rank `fraction` quantile of `values` (fraction in [0, 1]); an empty sample gives 0.
+double Quantile(std::vector<double> values, double fraction);
+
+// Median, 95th percentile and maximum of `values`; an empty sample gives zeros.
+Spread ComputeSpread(const std::vector<double>& values);
 
 }  // namespace pena::eval

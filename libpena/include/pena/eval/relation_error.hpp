@@ -33,6 +33,8 @@ struct RelationErrorSummary {
   MeanStd translation_sq_m2;          // squared translational error, m^2
   MeanStd rotation_deg;               // |rotational error|, degrees
   MeanStd rotation_sq_deg2;           // squared rotational error, deg^2
+  Spread translation_spread_m;        // median, 95th percentile and max of |translational error|
+  Spread rotation_spread_deg;         // the same of |rotational error|, degrees
   std::vector<RelationError> errors;  // one per used relation, in input order
 };
 

@@ -26,6 +26,8 @@ struct TrajectoryErrorSummary {
   double heading_rmse_deg = 0.0;             // sqrt(mean wrapped heading difference^2)
   double max_translation_error_m = 0.0;      // largest |p_est - p_true|
   double final_position_error_m = 0.0;       // |p_est - p_true| at the last matched stamp
+  double max_heading_error_deg = 0.0;        // largest |wrapped heading difference|
+  double final_heading_error_deg = 0.0;      // |wrapped heading difference| at the last stamp
   double truth_path_length_m = 0.0;          // truth path from first to last matched stamp
   double final_error_percent_of_path = 0.0;  // 100 * final error / path length (0 if no path)
   geometry::Pose2 truth_from_estimate;       // applied alignment; identity when align is false
