@@ -1,16 +1,21 @@
-// pena export --log LOG [--carmen OUT] [--csm OUT] [--tum OUT [--pose odometry|logged]]:
-// converts a log's scans (and odometry) to the text formats other tools read.
+// pena export --log LOG [--carmen OUT [--perturb-odometry SEED]] [--csm OUT]
+//             [--tum OUT [--pose odometry|logged]]:
+// converts a log's scans (and odometry) to the text formats other tools read; with
+// --perturb-odometry the CARMEN output's odometry carries sim::OdometryNoiseModel's errors.
+#include <cstdint>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "cli_support.hpp"
 #include "commands.hpp"
 #include "pena/geometry/trajectory.hpp"
 #include "pena/io/carmen.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/trajectory_io.hpp"
+#include "pena/sim/odometry_perturbation.hpp"
 
 namespace pena::cli {
 namespace {
@@ -21,6 +26,7 @@ struct ExportOptions {
   std::string csm;
   std::string tum;
   std::string pose = "odometry";
+  std::optional<std::uint64_t> perturb_seed;  // --perturb-odometry: the noise model's seed
   io::ReadOptions read;
 };
 
@@ -29,7 +35,11 @@ struct ExportCounts {
   std::size_t odometry = 0;
   std::size_t not_representable = 0;  // gyro, compass, stride, ground truth: no CARMEN line
   std::size_t tum_left_out = 0;       // scans without the pose, or not after the previous stamp
+  std::size_t restamped = 0;          // --perturb-odometry: scans given a stamp after the previous
 };
+
+// With --perturb-odometry, the time a scan that is not after the previous one is put after it.
+constexpr double kRestampS = 0.2;
 
 // The scan's pose for the TUM output, if it has the kind asked for.
 std::optional<geometry::Pose2> TumPose(const sensors::LaserScan& scan, const std::string& kind) {
@@ -59,15 +69,35 @@ void RunExport(const ExportOptions& options) {
   if (!options.csm.empty()) csm = std::make_unique<io::CsmJsonWriter>(options.csm);
   geometry::Trajectory trajectory;
   ExportCounts counts;
+  // The perturbed odometry travels in the scans' pose fields (the chain's prior where a scan has
+  // one); ODOM records are left out, since perturbing them apart would give two odometries.
+  std::optional<sim::OdometryPerturber> perturber;
+  std::optional<double> last_scan_stamp_s;
+  if (options.perturb_seed) perturber.emplace(sim::OdometryNoiseModel{}, *options.perturb_seed);
   while (std::optional<sensors::SensorRecord> record = source->Next()) {
-    if (const auto* scan = std::get_if<sensors::LaserScan>(&*record)) {
+    if (auto* scan = std::get_if<sensors::LaserScan>(&*record)) {
       ++counts.scans;
+      // Some corrected logs have no usable time (orebro: every stamp 0; csail: stamps rounded to
+      // 6 digits): a perturbed run needs one, so such scans follow the previous one by kRestampS.
+      if (perturber && last_scan_stamp_s && !(scan->stamp_s > *last_scan_stamp_s)) {
+        scan->stamp_s = *last_scan_stamp_s + kRestampS;
+        ++counts.restamped;
+      }
+      last_scan_stamp_s = scan->stamp_s;
+      // The TUM output keeps the poses as read: for a perturbed log, its truth.
+      if (!options.tum.empty()) AppendTum(*scan, options.pose, trajectory, counts);
+      if (perturber) {
+        if (!scan->odometry_pose) {
+          throw std::runtime_error(options.log + ": scan " + std::to_string(counts.scans) +
+                                   " has no odometry pose to perturb (--perturb-odometry)");
+        }
+        scan->odometry_pose = perturber->Perturb(*scan->odometry_pose);
+      }
       if (carmen) carmen->Write(*scan);
       if (csm) csm->Write(*scan);
-      if (!options.tum.empty()) AppendTum(*scan, options.pose, trajectory, counts);
     } else if (const auto* odometry = std::get_if<sensors::WheelOdometry>(&*record)) {
       ++counts.odometry;
-      if (carmen) carmen->Write(*odometry);
+      if (carmen && !perturber) carmen->Write(*odometry);
     } else {
       ++counts.not_representable;
     }
@@ -91,6 +121,15 @@ void RunExport(const ExportOptions& options) {
     std::cout << "left out of the TUM file " << counts.tum_left_out
               << " scans without that pose or not after the previous stamp\n";
   }
+  if (counts.restamped > 0) {
+    std::cout << "restamped " << counts.restamped << " scans not after the previous one (+"
+              << Fixed(kRestampS, 1) << " s each)\n";
+  }
+  if (perturber) {
+    std::cout << "odometry perturbed (seed " << *options.perturb_seed << "): distance scale "
+              << Fixed(perturber->distance_scale(), 4) << ", turn scale "
+              << Fixed(perturber->turn_scale(), 4) << ", " << perturber->slips() << " slips\n";
+  }
   if (source->skipped() > 0) std::cout << "skipped " << source->skipped() << " malformed lines\n";
 }
 
@@ -102,7 +141,15 @@ void AddExportCommand(CLI::App& app) {
       "export", "Convert a log's scans to CARMEN, CSM JSON (sm1/sm2) and/or a TUM trajectory");
   command->add_option("--log", options->log, "Input log: CARMEN (plain or gzip) or PeNa mission log")
       ->required();
-  command->add_option("--carmen", options->carmen, "Write FLASER/ODOM lines to this CARMEN file");
+  CLI::Option* carmen_option = command->add_option(
+      "--carmen", options->carmen, "Write FLASER/ODOM lines to this CARMEN file");
+  command
+      ->add_option("--perturb-odometry", options->perturb_seed,
+                   "SEED: the CARMEN output's odometry (the scans' pose fields; ODOM records are "
+                   "left out) gets the documented noise model's errors (scale, heading random "
+                   "walk, sudden slips; docs/evaluation.md); --tum keeps the poses as read, the "
+                   "perturbed run's truth")
+      ->needs(carmen_option);
   command->add_option("--csm", options->csm, "Write Censi CSM laser_data JSON, one scan per line");
   CLI::Option* tum = command->add_option(
       "--tum", options->tum, "Write the scans' poses at the scan stamps as a TUM trajectory");
