@@ -152,7 +152,7 @@ def print_table(rows):
         else:
             extra = ""
         speed = r["log_s"] / r["wall_s"] if r.get("wall_s") and r.get("log_s") else None
-        print(f"{r['set']:<14} {r['log']:<16} {fmt(r['mean_m'])} {fmt(r['median_m']):>8} "
+        print(f"{r['set']:<14} {r['log']:<16} {fmt(r['mean_m']):>8} {fmt(r['median_m']):>8} "
               f"{fmt(r['p95_m']):>8} {fmt(r['max_m']):>8} {fmt(r['max_rot_deg'], 1):>8} {extra:<22} "
               f"{fmt(r['wall_s'], 1):>8} {fmt(speed, 0):>7}")
 
