@@ -12,7 +12,7 @@
 # Prints "mission/entity rmse_m final_% heading_deg" rows, then "mean ..." and "over1% N of M";
 # runs are kept in WORK/TAG/<mission>-<entity>. Example, an option set A:
 #   scripts/people-odometry-sweep.sh --tag A -- --set dead_reckoning.stride_interpolation.enabled=0 \
-#       --set dead_reckoning.max_stride_period_s=1.5 --set keyframe_turn_rate_rad_s=0.5236
+#       --set dead_reckoning.max_stride_period_s=1.5
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

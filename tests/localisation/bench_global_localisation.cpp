@@ -135,10 +135,6 @@ void ApplySettings(localisation::LocalisationChainOptions& chain) {
     else if (name == "odometry.stopped_stride_fraction") chain.odometry.dead_reckoning.stopped_stride_fraction = value;
     else if (name == "odometry.turning_on_the_spot_rad_s") chain.odometry.dead_reckoning.turning_on_the_spot_rad_s = value;
     else if (name == "odometry.overdue_turn_rad") chain.odometry.dead_reckoning.overdue_turn_rad = value;
-    else if (name == "odometry.keyframe_turn_rate_rad_s") chain.odometry.keyframe_turn_rate_rad_s = value;
-    else if (name == "odometry.keyframe_absorbs_stride_jumps") chain.odometry.keyframe_absorbs_stride_jumps = value != 0.0;
-    else if (name == "odometry.keyframe_stride_jump_share") chain.odometry.keyframe_stride_jump_share = value != 0.0;
-    else if (name == "odometry.keyframe_stride_jump_across_weak") chain.odometry.keyframe_stride_jump_across_weak = value != 0.0;
     else if (name == "odometry.local_map_keyframes") chain.odometry.local_map_keyframes = static_cast<int>(value);
     else {
       std::fprintf(stderr, "PENA_BENCH_SET: unknown tracker option %s\n", name.c_str());

@@ -316,41 +316,5 @@ TEST(LaserOdometry, InvalidOptionNamesField) {
   }
 }
 
-// A people-only option (`on` sets it): the robot's run is the same with it as without, to the
-// last bit, and `dropped` (a count of what it takes out) is zero for the robot.
-void ExpectRobotUnchanged(const LaserOdometryOptions& on, long OdometryCounts::*dropped) {
-  const Replayed robot = Replay(Entity("robot1"), on);
-  const Replayed robot_off = Replay(Entity("robot1"));
-  EXPECT_EQ(robot.counts.*dropped, 0);
-  ASSERT_EQ(robot.estimates.size(), robot_off.estimates.size());
-  for (std::size_t i = 0; i < robot.estimates.size(); ++i) {
-    EXPECT_EQ(robot.estimates[i].world_from_body.x_m, robot_off.estimates[i].world_from_body.x_m);
-    EXPECT_EQ(robot.estimates[i].world_from_body.y_m, robot_off.estimates[i].world_from_body.y_m);
-  }
-}
-
-// drop_walker_fixed_points: people's dead reckoning only; a robot's run is
-// unchanged, and the walkers' bends give it something to drop.
-TEST(LaserOdometry, DropsWalkerFixedReturnsForPeopleOnly) {
-  LaserOdometryOptions on;
-  on.drop_walker_fixed_points = true;
-  ExpectRobotUnchanged(on, &OdometryCounts::walker_fixed_dropped);
-  EXPECT_GT(Replay(Entity("ff1"), on).counts.walker_fixed_dropped, 0);
-  EXPECT_EQ(Replay(Entity("ff1")).counts.walker_fixed_dropped, 0);
-  // Its thresholds are checked even when it is off.
-  LaserOdometryOptions bad;
-  bad.walker_fixed_points.static_m = 0.0;
-  EXPECT_THROW(LaserOdometry(bad, sensors::EntityKind::kHuman, {}, 0.0), std::invalid_argument);
-}
-
-// The same for returns inside space an earlier scan saw through: people only, off by default.
-TEST(LaserOdometry, DropsSeenThroughReturnsForPeopleOnly) {
-  LaserOdometryOptions on;
-  on.drop_seen_through_points = true;
-  ExpectRobotUnchanged(on, &OdometryCounts::seen_through_dropped);
-  EXPECT_GT(Replay(Entity("ff1"), on).counts.seen_through_dropped, 0);
-  EXPECT_EQ(Replay(Entity("ff1")).counts.seen_through_dropped, 0);
-}
-
 }  // namespace
 }  // namespace pena::odometry

@@ -48,7 +48,7 @@ PlaceChoice Place() {
 }
 
 TEST(PlaceChoice, RecencyKeepsOnlyTheLastKeyframes) {
-  LocalMap map(4, 0.12, false, 0.0);
+  LocalMap map(4, 0.12, false);
   TurnOnTheSpot(map);
   const scan_matching::Points2 reference = map.Reference();
   EXPECT_EQ(reference.size(), 4u);
@@ -59,7 +59,7 @@ TEST(PlaceChoice, RecencyKeepsOnlyTheLastKeyframes) {
 }
 
 TEST(PlaceChoice, TurningBackChoosesTheKeyframeFacingThatWay) {
-  LocalMap map(4, 0.12, false, 0.0, Place());
+  LocalMap map(4, 0.12, false, Place());
   TurnOnTheSpot(map);
   // After the latest keyframe (150 deg): the two latest plus the two nearest in heading.
   scan_matching::Points2 reference = map.Reference();
@@ -80,7 +80,7 @@ TEST(PlaceChoice, TurningBackChoosesTheKeyframeFacingThatWay) {
 TEST(PlaceChoice, OldAndFarKeyframesAreNotChosen) {
   PlaceChoice place = Place();
   place.pool_age_s = 30.0;
-  LocalMap map(4, 0.12, false, 0.0, place);
+  LocalMap map(4, 0.12, false, place);
   TurnOnTheSpot(map);  // stamps 0..10 s
   // 35 s later at 0 deg: keyframes 0..4 are older than 30 s, 5 and 6 are not.
   EXPECT_TRUE(map.ChooseAgain(geometry::Pose2{0.0, 0.0, 0.0}, 35.0));
@@ -97,7 +97,7 @@ TEST(PlaceChoice, OldAndFarKeyframesAreNotChosen) {
 TEST(PlaceChoice, ThePoolIsBounded) {
   PlaceChoice place = Place();
   place.pool_keyframes = 6;
-  LocalMap map(4, 0.12, false, 0.0, place);
+  LocalMap map(4, 0.12, false, place);
   TurnOnTheSpot(map);  // only keyframes 5..10 are kept
   EXPECT_TRUE(map.ChooseAgain(geometry::Pose2{0.0, 0.0, 0.0}, 11.0));
   const scan_matching::Points2 reference = map.Reference();
@@ -105,44 +105,11 @@ TEST(PlaceChoice, ThePoolIsBounded) {
   for (double marker : {5.0, 6.0, 9.0, 10.0}) EXPECT_TRUE(HasMarker(reference, marker)) << marker;
 }
 
-// Driving on (keyframes 1.5 m apart): no pool keyframe but the latest two lies within 2 m, so
-// the place choice alone leaves the reference at two keyframes where recency keeps four; with
-// fill_recent the free slots go to the next latest ones (mit-csail scan 805, Z frame: a failed
-// match against 3 keyframes, restarted 15 deg off).
-TEST(PlaceChoice, DrivingOnFillsTheFreeSlotsWithTheLatestKeyframes) {
-  PlaceChoice place = Place();
-  LocalMap alone(4, 0.12, false, 0.0, place);
-  place.fill_recent = true;
-  LocalMap filled(4, 0.12, false, 0.0, place);
-  for (int k = 0; k <= 10; ++k) {
-    alone.Add(Marked(1.5 * k, 0.0, k, static_cast<double>(k)));
-    filled.Add(Marked(1.5 * k, 0.0, k, static_cast<double>(k)));
-  }
-  EXPECT_EQ(alone.Reference().size(), 2u);
-  const scan_matching::Points2 reference = filled.Reference();
-  EXPECT_EQ(reference.size(), 4u);
-  for (double marker : {7.0, 8.0, 9.0, 10.0}) EXPECT_TRUE(HasMarker(reference, marker)) << marker;
-  EXPECT_FALSE(filled.ChooseAgain(geometry::Pose2{15.0, 0.0, 0.0}, 11.0));  // nothing nearer
-}
-
-// The fill takes only slots the place choice left free: turning back on the spot still gets
-// the keyframes facing that way.
-TEST(PlaceChoice, TheFillLeavesThePlaceChoiceAloneWhereItIsFull) {
-  PlaceChoice place = Place();
-  place.fill_recent = true;
-  LocalMap map(4, 0.12, false, 0.0, place);
-  TurnOnTheSpot(map);
-  EXPECT_TRUE(map.ChooseAgain(geometry::Pose2{0.02, 0.0, 5.0 * kDeg}, 12.0));
-  const scan_matching::Points2 reference = map.Reference();
-  EXPECT_EQ(reference.size(), 4u);
-  for (double marker : {0.0, 1.0, 9.0, 10.0}) EXPECT_TRUE(HasMarker(reference, marker)) << marker;
-}
-
 // The fill on demand (local_map_place_fill_below_score, local_map_place_fill_frozen_scans):
 // FilledReference offers the filled reference without changing the choice, FillFreeSlots takes
 // it until the next keyframe chooses again.
 TEST(PlaceChoice, TheFillOnDemandLastsUntilTheNextChoice) {
-  LocalMap map(4, 0.12, false, 0.0, Place());
+  LocalMap map(4, 0.12, false, Place());
   for (int k = 0; k <= 10; ++k) map.Add(Marked(1.5 * k, 0.0, k, static_cast<double>(k)));
   const std::optional<scan_matching::Points2> filled = map.FilledReference();
   ASSERT_TRUE(filled.has_value());
@@ -159,7 +126,7 @@ TEST(PlaceChoice, TheFillOnDemandLastsUntilTheNextChoice) {
 
 // Without the place choice there is nothing to fill.
 TEST(PlaceChoice, RecencyHasNoFillOnDemand) {
-  LocalMap map(4, 0.12, false, 0.0);
+  LocalMap map(4, 0.12, false);
   for (int k = 0; k <= 10; ++k) map.Add(Marked(1.5 * k, 0.0, k, static_cast<double>(k)));
   EXPECT_FALSE(map.FilledReference().has_value());
   EXPECT_FALSE(map.FillFreeSlots());
@@ -181,21 +148,15 @@ RobotRun ReplayRobot(const LaserOdometryOptions& options) {
   return run;
 }
 
-// The whole chain with the place choice and the place-based keyframes on the simulated team
-// robot (level laser, wheel odometry): it ends where the truth does, with no more keyframes
-// than the recency reference makes.
-TEST(PlaceChoice, TeamRobotEndsOnTheTruthWithNoMoreKeyframes) {
+// The whole chain with the place choice on the simulated team robot (level laser, wheel
+// odometry): it ends where the truth does.
+TEST(PlaceChoice, TeamRobotEndsOnTheTruth) {
   LaserOdometryOptions place;
   place.local_map_pool_keyframes = 40;
-  place.keyframe_by_place = true;
   const RobotRun chosen = ReplayRobot(place);
-  LaserOdometryOptions recency_options;
-  recency_options.local_map_pool_keyframes = 0;
-  const RobotRun recency = ReplayRobot(recency_options);
   const geometry::Pose2& truth = testing::TeamEntity("robot1").truth.back().world_from_body;
   EXPECT_LT(std::hypot(truth.x_m - chosen.end.x_m, truth.y_m - chosen.end.y_m), 0.5);
   EXPECT_LT(std::abs(geometry::NormalizeAngle(truth.theta_rad - chosen.end.theta_rad)), 2.0 * kDeg);
-  EXPECT_LE(chosen.keyframes, recency.keyframes);
 }
 
 std::vector<geometry::Pose2> Poses(const std::string& entity, const LaserOdometryOptions& options) {

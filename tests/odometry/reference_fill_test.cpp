@@ -42,22 +42,13 @@ TEST(FillReference, ZeroSpacingLeavesThePointsAlone) {
   EXPECT_EQ(FillReference(WallAtTenMetres(), {}, 0.0, 0.5).size(), 7u);
 }
 
-TEST(FillReference, GrazingBandIsFilledOnlyAtItsOwnSpacing) {
+TEST(FillReference, GrazingBandBeyondTheBeamLimitIsNotFilled) {
   // A wall 1 m to the side seen by the beams at 18 and 19 deg: about 72 deg incidence, the two
   // returns 17 cm apart, 3.2 beam spacings (beyond the limit of 3, within the along-beam cut).
   const scan_matching::Points2 grazing = {{1.0 / std::tan(18.0 * kDeg), 1.0},
                                           {1.0 / std::tan(19.0 * kDeg), 1.0}};
   EXPECT_EQ(FillReference(grazing, {}, 0.03, 0.5, 3.0).size(), 2u);  // the band is not filled
   EXPECT_EQ(FillReference(grazing, {}, 0.03, 0.5, 0.0).size(), 7u);  // no limit: every 3 cm
-  const scan_matching::Points2 sparse =
-      FillReference(grazing, {}, 0.03, 0.5, 3.0, std::numeric_limits<double>::infinity(), 0.05);
-  EXPECT_EQ(sparse.size(), 5u);  // every 5 cm: fewer hits for eq. 2 there
-  for (const auto& point : sparse) EXPECT_NEAR(point.y(), 1.0, 1e-9);
-  // Within the limit the band spacing changes nothing (the wall straight ahead).
-  EXPECT_EQ(FillReference(WallAtTenMetres(), {}, 0.03, 0.5, 3.0,
-                          std::numeric_limits<double>::infinity(), 0.05)
-                .size(),
-            FillReference(WallAtTenMetres(), {}, 0.03, 0.5).size());
 }
 
 }  // namespace

@@ -64,7 +64,7 @@ odometry::LaserOdometryOptions OdometryOptionsOf(const MapArgs& args) {
   }
   odometry::LaserOdometryOptions options;
   // A map is built offline, without a plan to correct the odometry: people's runs take the long
-  // reference, which drifts less along corridors (docs/odometry.md, session 28).
+  // reference, which drifts less along corridors (docs/odometry.md).
   options.local_map_keyframes = odometry::LaserOdometryOptions::kAutoLocalMapKeyframes;
   ApplyOdometrySettings(settings, options);
   return options;

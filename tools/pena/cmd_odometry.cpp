@@ -214,11 +214,7 @@ void WriteSummaryJson(const std::filesystem::path& path, const OdometryArgs& arg
       << ", \"records\": " << run.records << ", \"skipped_lines\": " << source.skipped()
       << ", \"scans\": " << c.scans << ", \"matched\": " << c.matched
       << ", \"degenerate\": " << c.degenerate << ", \"failed\": " << c.failed
-      << ", \"gated\": " << c.gated << ", \"stale\": " << c.stale
-      << ", \"turn_held\": " << c.turn_held;
-  // Only when drop_walker_fixed_points dropped any: the defaults' summary stays as it was.
-  if (c.walker_fixed_dropped > 0) out << ", \"walker_fixed_dropped\": " << c.walker_fixed_dropped;
-  if (c.seen_through_dropped > 0) out << ", \"seen_through_dropped\": " << c.seen_through_dropped;
+      << ", \"gated\": " << c.gated << ", \"stale\": " << c.stale;
   if (c.pace_held > 0) out << ", \"pace_held\": " << c.pace_held;
   if (c.refused > 0) out << ", \"refused\": " << c.refused;
   // Only for swept lasers (CARMEN logs): the simulated missions' summaries stay as they were.

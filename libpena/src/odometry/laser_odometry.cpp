@@ -21,11 +21,10 @@ MotionPrior Resolve(MotionPrior prior, sensors::EntityKind kind) {
   return kind == sensors::EntityKind::kHuman ? MotionPrior::kDeadReckoning : MotionPrior::kOdometry;
 }
 
-// The reference chosen by place is the robots' default (session 11: with the frozen-odometry
-// handling better on all three Freiburg logs); people keep recency (mixed, twelfth round b). An
-// automatic local map length is the robots' short one or the people's long one (session 28).
-// The slide check is the people's with spread strides (session 24): on the raw stride stream
-// the prior moves in whole strides, and wheel odometry was not measured with it.
+// The two profiles behind the automatic options: robots choose their reference by place (better
+// with the frozen-odometry handling on all three Freiburg logs) from a short local map; people
+// keep recency with the long local map, and the slide check where strides are spread (on the
+// raw stride stream the prior moves in whole strides).
 LaserOdometryOptions ForEntity(LaserOdometryOptions options, sensors::EntityKind kind) {
   if (options.local_map_keyframes == LaserOdometryOptions::kAutoLocalMapKeyframes) {
     options.local_map_keyframes = kind == sensors::EntityKind::kRobot
@@ -97,13 +96,7 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   out.world_from_prior = Predict(scan);
   match_weak_direction.reset();
   poor_timing = timing.Add(scan.stamp_s);
-  scan_matching::Points2 points = MidSweepPoints(scan, out);
-  if (drop_walker_fixed) points = DropWalkerFixed(std::move(points));
-  if (drop_seen_through) {
-    const std::vector<bool> marked = seen_through.Find(points, out.world_from_prior);
-    counts.seen_through_dropped += std::count(marked.begin(), marked.end(), true);
-    points = internal::WithoutMarked(points, marked);
-  }
+  const scan_matching::Points2 points = MidSweepPoints(scan, out);
   out.points = static_cast<int>(points.size());
   out.stale = stale_scans.IsStale(scan);
   counts.stale += out.stale ? 1 : 0;
@@ -133,7 +126,6 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
     frozen_odometry.Estimated(estimate);
     return out;
   }
-  if (drop_seen_through) seen_through.Remember(scan, estimate);
   velocity = geometry::Between(previous_estimate, estimate);
   previous_estimate = estimate;
   frozen_odometry.Estimated(estimate);
@@ -194,20 +186,7 @@ std::optional<geometry::Pose2> LaserOdometry::Impl::MatchForDeskew(
 }
 
 geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
-  const std::optional<geometry::Pose2> motion_before = motion.last_pose();
   const geometry::Pose2 increment = motion.TakeIncrement(scan);
-  if (drop_walker_fixed) {
-    // A stride report replacing the extrapolated stride corrects the past: not motion between
-    // these two scans (up to 0.3 m, more than the walker-fixed test's static tolerance).
-    smooth_increment = increment;
-    if (motion_before) {
-      const Eigen::Vector2d jump_m =
-          Eigen::Rotation2Dd(-motion_before->theta_rad) * motion.stride_jump_m();
-      smooth_increment.x_m -= jump_m.x();
-      smooth_increment.y_m -= jump_m.y();
-    }
-  }
-  if (options.keyframe_absorbs_stride_jumps) AbsorbStrideJumps();
   const auto& motion_pose = motion.last_pose();
   motion_since_keyframe.reset();
   // Intel's bursts repeat the pose of the scan delivered with them (its Y frame: 0.249 -> 0.392 m
@@ -237,15 +216,6 @@ geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
   // would add that catch-up on top of the motion the matcher already found.
   return geometry::Compose(local_map.latest().world_from_body,
                            geometry::Between(*keyframe_motion_pose, *motion_pose));
-}
-
-scan_matching::Points2 LaserOdometry::Impl::DropWalkerFixed(scan_matching::Points2 points) {
-  const std::vector<bool> moving = walker_fixed.Find(previous_points, points, smooth_increment);
-  previous_points = points;  // the next scan is compared with all of this one's returns
-  const auto dropped = std::count(moving.begin(), moving.end(), true);
-  if (dropped == 0) return points;
-  counts.walker_fixed_dropped += dropped;
-  return internal::WithoutMarked(points, moving);
 }
 
 const OdometryCounts& LaserOdometry::counts() const { return impl_->counts; }

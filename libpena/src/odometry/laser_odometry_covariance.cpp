@@ -46,7 +46,6 @@ void LaserOdometry::Impl::UpdateCovariance(const OdometryEstimate& out) {
     covariance = match_reference_covariance + step;
   }
   if (keyframe_from_this_scan) local_map.SetLatestCovariance(covariance);
-  if (held && held->stamp_s == out.stamp_s) held->covariance = covariance;
 }
 
 Eigen::Matrix3d LaserOdometry::Impl::ReferenceCovariance(

@@ -54,15 +54,6 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
   }
   const internal::WindowScale window_before = window;
   scan_matching::MatchResult result = Search(points, prior, out);
-  if (held && result.score < options.keyframe_turn_min_score) {
-    CommitHeld(out);
-    prior = out.world_from_prior;
-    // A failed match below restarts the local map at `estimate`: it must be the prior anchored
-    // at the committed keyframe, not the one anchored at the keyframe before the hold (office
-    // seed 3 at 144.25 s: that one carried a poor turn keyframe's +6 deg into the new map).
-    estimate = prior;
-    result = Search(points, prior, out);
-  }
   if (result.score < options.local_map_place_fill_below_score) {
     result = SearchFilled(points, prior, window_before, result, out);
   }
@@ -110,11 +101,8 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
       fell_back = true;  // its covariance is the prior's
       match_weak_direction.reset();
     }
-    const int fallback = options.prior_gate_fallback_scans;
-    if (fallback > 0 && ++gated_in_row >= fallback) FallBackToPrior(points, out);
     return;
   }
-  gated_in_row = 0;
   window.Shrink();
   const geometry::Pose2 moved = geometry::Between(local_map.latest().world_from_body, estimate);
   // A deviation trusted after prior_gate_confirm scans must re-anchor the priors at once: without
@@ -124,17 +112,7 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
     TakeKeyframe(points, out);
     return;
   }
-  if (result.score >= options.keyframe_turn_min_score) held.reset();  // the reference still holds
   if (NearAKeyframe(moved) && result.score >= options.keyframe_min_score) return;
-  if (HoldDuringFastTurn(result.score, out)) {
-    ++counts.turn_held;  // the pose is output; the reference waits for a better match
-    const std::optional<geometry::Pose2> motion_pose =
-        frozen_odometry.PairedPose(motion.last_pose(), estimate);
-    held = HeldCandidate{points,      estimate,    motion_pose, motion.heading_sigma_rad(),
-                         poor_timing, out.stamp_s, WeakDirectionInMotionFrame(motion_pose),
-                         covariance};
-    return;
-  }
   TakeKeyframe(points, out);
 }
 

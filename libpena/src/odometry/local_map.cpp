@@ -8,18 +8,11 @@
 
 namespace pena::odometry::internal {
 
-double WallOnlyRangeM(double laser_height_m, double ceiling_height_m, double max_pitch_rad) {
-  if (!(max_pitch_rad > 0.0)) return 0.0;
-  const double nearest_surface_m = std::min(laser_height_m, ceiling_height_m - laser_height_m);
-  return nearest_surface_m / std::tan(max_pitch_rad);
-}
-
 LocalMap::LocalMap(int max_keyframes, double confirm_distance_m, bool require_confirmed,
-                   double confirm_beyond_m, PlaceChoice place)
+                   PlaceChoice place)
     : max_keyframes_(max_keyframes),
       confirm_distance_m_(confirm_distance_m),
       require_confirmed_(require_confirmed),
-      confirm_beyond_m_(confirm_beyond_m),
       place_(place) {}
 
 void LocalMap::Add(Keyframe keyframe) {
@@ -82,7 +75,6 @@ std::vector<std::int64_t> LocalMap::ChosenFor(const geometry::Pose2& world_from_
                     ranked.end());
   for (std::size_t k = 0; k < others; ++k) chosen.push_back(ids_[ranked[k].second]);
   std::sort(chosen.begin(), chosen.end());
-  if (place_.fill_recent) FillWithRecent(chosen);
   return chosen;
 }
 
@@ -177,14 +169,8 @@ scan_matching::Points2 LocalMap::ReferenceOf(const std::vector<std::int64_t>& ch
   for (const Keyframe* keyframe : used) {
     seen.emplace_back(keyframe->points_world, confirm_distance_m_ / 2.0, confirm_distance_m_);
   }
-  const double beyond_squared_m2 = confirm_beyond_m_ * confirm_beyond_m_;
   for (std::size_t k = 0; k < used.size(); ++k) {
-    const Eigen::Vector2d origin(used[k]->world_from_body.x_m, used[k]->world_from_body.y_m);
     for (const auto& point : used[k]->points_world) {
-      if ((point - origin).squaredNorm() < beyond_squared_m2) {
-        reference.push_back(point);  // nearer than the floor can be: a wall
-        continue;
-      }
       for (std::size_t other = 0; other < used.size(); ++other) {
         if (other == k) continue;
         const Eigen::Vector2i cell = seen[other].CellOf(point);

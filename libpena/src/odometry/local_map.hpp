@@ -28,12 +28,6 @@ struct Keyframe {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
-// The tilt model (paper eq. 1, Fig. 2b): a laser h above the floor, pitched by at most
-// max_pitch, first meets the floor at horizontal range h / tan(max_pitch) and a ceiling c above
-// the floor at (c - h) / tan(max_pitch). Nearer returns are walls whatever the pitch.
-// 0 when max_pitch_rad <= 0 (no model: any return may be a floor or ceiling hit).
-double WallOnlyRangeM(double laser_height_m, double ceiling_height_m, double max_pitch_rad);
-
 // How the reference keyframes are chosen by place. pool_keyframes = 0: off (the last ones).
 struct PlaceChoice {
   int pool_keyframes = 0;      // the last this many keyframes are kept to choose from
@@ -43,18 +37,14 @@ struct PlaceChoice {
   // Ranking of the others: distance / distance_scale_m + heading difference / angle_scale_rad.
   double distance_scale_m = 0.5;
   double angle_scale_rad = 0.2617993877991494;
-  // Slots left free by the place choice go to the next latest keyframes (never fewer than the
-  // recency choice's max_keyframes).
-  bool fill_recent = false;
 };
 
 // The keyframes and the reference built from max_keyframes of them.
 class LocalMap {
  public:
-  // With require_confirmed, points farther than confirm_beyond_m from their keyframe's pose
-  // (the tilt model's wall-only range; 0: all points) are kept only if confirmed.
+  // With require_confirmed, reference points are kept only if another keyframe saw them too.
   LocalMap(int max_keyframes, double confirm_distance_m, bool require_confirmed,
-           double confirm_beyond_m, PlaceChoice place = {});
+           PlaceChoice place = {});
 
   // Adds the keyframe; with a place choice, chooses the reference around its pose.
   void Add(Keyframe keyframe);
@@ -74,7 +64,7 @@ class LocalMap {
   bool ChooseAgain(const geometry::Pose2& world_from_body, double stamp_s);
 
   // Place choice only: the reference points with the slots the choice left free given to the
-  // next latest keyframes (as PlaceChoice::fill_recent would); nullopt when no slot is free.
+  // next latest keyframes; nullopt when no slot is free.
   std::optional<scan_matching::Points2> FilledReference() const;
   // Gives the free slots to the latest keyframes until the reference is next chosen (the next
   // keyframe or ChooseAgain). True when the reference changed.
@@ -84,8 +74,7 @@ class LocalMap {
   bool Covers(const geometry::Pose2& world_from_body, double distance_m, double angle_rad) const;
 
   // The reference points: all points of the chosen keyframes, or with require_confirmed (and at
-  // least two keyframes) those within confirm_beyond_m of their keyframe's pose and those within
-  // confirm_distance_m of a point of another chosen keyframe.
+  // least two keyframes) those within confirm_distance_m of a point of another chosen keyframe.
   scan_matching::Points2 Reference() const;
 
  private:
@@ -101,7 +90,6 @@ class LocalMap {
   int max_keyframes_;
   double confirm_distance_m_;
   bool require_confirmed_;
-  double confirm_beyond_m_;
   PlaceChoice place_;
   std::deque<Keyframe> keyframes_;    // the pool, oldest first
   std::deque<std::int64_t> ids_;      // keyframes_[i]'s id: the count of keyframes before it

@@ -69,11 +69,7 @@ geometry::Pose2 MotionTracker::TakeIncrement(const sensors::LaserScan& scan) {
     case MotionPrior::kDeadReckoning: {
       const dead_reckoning::PosePrior prior = dead_reckoning_.PriorAt(scan.stamp_s);
       now = prior.world_from_body;
-      heading_sigma_rad_ = std::sqrt(prior.covariance(2, 2));
       pending_position_covariance_ = dead_reckoning_.PendingCovarianceAt(scan.stamp_s);
-      stride_jump_m_ = dead_reckoning_.extrapolation_jumps_m() - jumps_so_far_m_;
-      jumps_so_far_m_ = dead_reckoning_.extrapolation_jumps_m();
-      stride_jumps_ = dead_reckoning_.TakeStrideJumps();
       break;
     }
     case MotionPrior::kOdometry:

@@ -29,16 +29,7 @@ class MotionTracker {
   // stride scale is calibrated over stretches fixed throughout (HumanDeadReckoning::AddPositionFix).
   void AddPositionFix(double stamp_s, const geometry::Pose2& world_from_body, bool fixed);
 
-  // Dead reckoning: the jumps it made between the previous scan and the last one given to
-  // TakeIncrement by replacing or dropping its extrapolated stride (world frame; zero otherwise).
-  const Eigen::Vector2d& stride_jump_m() const { return stride_jump_m_; }
-  // The same jumps one by one, with the stride each corrects (keyframe_stride_jump_share).
-  const std::vector<dead_reckoning::StrideJump>& stride_jumps() const { return stride_jumps_; }
-
   MotionPrior mode() const { return mode_; }
-  // The heading filter's standard deviation at the last scan given to TakeIncrement (dead
-  // reckoning only: nullopt otherwise).
-  const std::optional<double>& heading_sigma_rad() const { return heading_sigma_rad_; }
   // The dead reckoning's covariance of the motion its pose did not hold yet at the last scan given
   // to TakeIncrement (x-y, m^2; HumanDeadReckoning::PendingCovarianceAt); zero for other priors.
   const Eigen::Matrix2d& pending_position_covariance() const {
@@ -57,11 +48,7 @@ class MotionTracker {
   std::optional<geometry::Pose2> last_odometry_pose_;     // at the previous scan
   geometry::Pose2 world_from_start_;                      // the dead reckoning's start
   double start_stamp_s_ = 0.0;
-  std::optional<double> heading_sigma_rad_;               // at the previous scan
   Eigen::Matrix2d pending_position_covariance_ = Eigen::Matrix2d::Zero();  // at the previous scan
-  Eigen::Vector2d stride_jump_m_ = Eigen::Vector2d::Zero();   // see stride_jump_m()
-  Eigen::Vector2d jumps_so_far_m_ = Eigen::Vector2d::Zero();  // the dead reckoning's sum then
-  std::vector<dead_reckoning::StrideJump> stride_jumps_;       // see stride_jumps()
   std::optional<sensors::WheelOdometry> previous_wheel_, latest_wheel_;
   double stride_sum_m_ = 0.0;                             // since the previous scan
   std::optional<double> last_compass_rejected_s_;

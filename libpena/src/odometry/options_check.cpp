@@ -51,12 +51,6 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
   Require(o.keyframe_angle_rad > 0.0, "keyframe_angle_rad", "> 0 rad", o.keyframe_angle_rad);
   Require(o.keyframe_min_score >= 0.0 && o.keyframe_min_score <= 1.0, "keyframe_min_score",
           "in [0, 1]", o.keyframe_min_score);
-  Require(o.keyframe_turn_rate_rad_s >= 0.0, "keyframe_turn_rate_rad_s", ">= 0 rad/s (0: off)",
-          o.keyframe_turn_rate_rad_s);
-  Require(o.keyframe_turn_min_score >= 0.0 && o.keyframe_turn_min_score <= 1.0,
-          "keyframe_turn_min_score", "in [0, 1]", o.keyframe_turn_min_score);
-  Require(o.keyframe_turn_min_interval_s > 0.0, "keyframe_turn_min_interval_s", "> 0 s",
-          o.keyframe_turn_min_interval_s);
   Require(o.frozen_odometry_min_turn_rad >= 0.0, "frozen_odometry_min_turn_rad",
           ">= 0 rad (0: off)", o.frozen_odometry_min_turn_rad);
   Require(o.frozen_odometry_min_move_m >= 0.0, "frozen_odometry_min_move_m", ">= 0 m (0: off)",
@@ -87,43 +81,22 @@ const LaserOdometryOptions& CheckedOptions(const LaserOdometryOptions& o) {
           ">= 0 (0: no limit)", o.reference_fill_max_gap_beams);
   Require(o.reference_fill_max_gap_beams_bursty >= 0.0, "reference_fill_max_gap_beams_bursty",
           ">= 0 (0: no limit)", o.reference_fill_max_gap_beams_bursty);
-  Require(o.reference_fill_band_spacing_m >= 0.0, "reference_fill_band_spacing_m",
-          ">= 0 m (0: band not filled)", o.reference_fill_band_spacing_m);
   Require(o.timing_burst_gap_s >= 0.0, "timing_burst_gap_s", ">= 0 s (0: no timing check)",
           o.timing_burst_gap_s);
   Require(o.timing_burst_fraction >= 0.0 && o.timing_burst_fraction < 1.0,
           "timing_burst_fraction", "in [0, 1)", o.timing_burst_fraction);
   Require(o.timing_burst_window_scans >= 0, "timing_burst_window_scans",
           ">= 0 scans (0: all so far)", o.timing_burst_window_scans);
-  Require(o.tilt_max_pitch_rad >= 0.0 && o.tilt_max_pitch_rad < 1.5, "tilt_max_pitch_rad",
-          "in [0, 1.5) rad (0: no tilt model)", o.tilt_max_pitch_rad);
-  Require(o.tilt_laser_height_m > 0.0, "tilt_laser_height_m", "> 0 m", o.tilt_laser_height_m);
-  Require(o.tilt_ceiling_height_m > o.tilt_laser_height_m, "tilt_ceiling_height_m",
-          "> tilt_laser_height_m (m)", o.tilt_ceiling_height_m);
   Require(o.prior_gate_rad >= 0.0, "prior_gate_rad", ">= 0 rad (0: no gate)", o.prior_gate_rad);
   Require(o.prior_gate_fraction >= 0.0, "prior_gate_fraction", ">= 0", o.prior_gate_fraction);
   Require(o.prior_gate_fraction_gyro >= 0.0, "prior_gate_fraction_gyro", ">= 0",
           o.prior_gate_fraction_gyro);
-  Require(o.prior_gate_gyro_sigmas >= 0.0, "prior_gate_gyro_sigmas", ">= 0 (0: prior_gate_rad)",
-          o.prior_gate_gyro_sigmas);
   Require(o.prior_gate_m > 0.0, "prior_gate_m", "> 0 m", o.prior_gate_m);
   Require(o.prior_gate_confirm >= 1, "prior_gate_confirm", ">= 1 scans", o.prior_gate_confirm);
   Require(o.prior_gate_confirm_gyro >= 1, "prior_gate_confirm_gyro", ">= 1 scans",
           o.prior_gate_confirm_gyro);
-  Require(o.prior_gate_agree_gyro_m >= 0.0, "prior_gate_agree_gyro_m", ">= 0 m (0: a plain count)",
-          o.prior_gate_agree_gyro_m);
-  Require(o.prior_gate_agree_gyro_rad > 0.0, "prior_gate_agree_gyro_rad", "> 0 rad",
-          o.prior_gate_agree_gyro_rad);
   Require(o.prior_gate_refuse_gyro_rad >= 0.0, "prior_gate_refuse_gyro_rad", ">= 0 rad (0: off)",
           o.prior_gate_refuse_gyro_rad);
-  Require(o.prior_gate_fallback_scans >= 0, "prior_gate_fallback_scans", ">= 0 scans (0: off)",
-          o.prior_gate_fallback_scans);
-  Require(!o.keyframe_stride_jump_share || o.keyframe_absorbs_stride_jumps,
-          "keyframe_stride_jump_share", "off unless keyframe_absorbs_stride_jumps is on (flag)",
-          o.keyframe_stride_jump_share ? 1.0 : 0.0);
-  Require(!o.keyframe_stride_jump_across_weak || o.keyframe_stride_jump_share,
-          "keyframe_stride_jump_across_weak", "off unless keyframe_stride_jump_share is on (flag)",
-          o.keyframe_stride_jump_across_weak ? 1.0 : 0.0);
   Require(o.prior_gate_compass_window_s >= 0.0, "prior_gate_compass_window_s", ">= 0 s",
           o.prior_gate_compass_window_s);
   Require(o.stale_history_scans >= 0, "stale_history_scans", ">= 0 scans (0: no check)",

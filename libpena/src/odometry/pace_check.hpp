@@ -1,6 +1,6 @@
 #pragma once
 // The pace check of the people's laser odometry (internal): evidence over several metres, not
-// one match, that a corridor match is sliding back (docs/odometry.md, session 19).
+// one match, that a corridor match is sliding back (docs/odometry.md, "Estimator").
 //
 // In a corridor the only returns across it are often floor lines a few metres ahead. They move
 // with the walker, so a match against the reference keyframes reads them as an end wall that

@@ -13,8 +13,7 @@ constexpr double kMaxAlongBeamCos = 0.966;
 
 scan_matching::Points2 FillReference(const scan_matching::Points2& points_world,
                                      const geometry::Pose2& world_from_sensor, double spacing_m,
-                                     double max_gap_m, double max_gap_beam_spacings,
-                                     double max_range_m, double band_spacing_m) {
+                                     double max_gap_m, double max_gap_beam_spacings) {
   // Neighbouring returns on one wall are at most range * beam angle / cos(incidence) apart; 3
   // beam spacings allow incidence up to 70 deg. Farther apart, they are different objects.
   if (spacing_m <= 0.0 || points_world.size() < 2) return points_world;
@@ -35,11 +34,9 @@ scan_matching::Points2 FillReference(const scan_matching::Points2& points_world,
     const Eigen::Vector2d beam = (ray_a + ray_b).normalized();
     const bool within_beams =
         max_gap_beam_spacings <= 0.0 || gap_m <= max_gap_beam_spacings * beam_spacing_m;
-    // Beyond the beam-spacing limit (the grazing band), filled sparser if at all: fewer hits.
-    const double step_m = within_beams ? spacing_m : band_spacing_m;
-    if (step_m > 0.0 && gap_m > step_m && gap_m <= max_gap_m && ray_a.norm() <= max_range_m &&
-        ray_b.norm() <= max_range_m && std::abs(beam.dot(step) / gap_m) < kMaxAlongBeamCos) {
-      const int extra = static_cast<int>(std::floor(gap_m / step_m));
+    if (within_beams && gap_m > spacing_m && gap_m <= max_gap_m &&
+        std::abs(beam.dot(step) / gap_m) < kMaxAlongBeamCos) {
+      const int extra = static_cast<int>(std::floor(gap_m / spacing_m));
       for (int k = 1; k <= extra; ++k) {
         const double fraction = static_cast<double>(k) / static_cast<double>(extra + 1);
         filled.push_back(a + fraction * step);

@@ -18,9 +18,8 @@ struct SlamOptions {
   int submap_keyframes = 12;         // keyframes on each side of that one in its submap
   double submap_radius_m = 12.0;     // submap points farther from its centre are left out
   // Half-width of the search window right after a closure. The graph has just been made to agree
-  // with the older keyframes, so the next closure has little to correct; a wide window let
-  // corridor closures creep 0.4-0.6 m each, one after another (office seed 1: 3.4 m; 0.6 m
-  // before session 22, docs/slam.md).
+  // with the older keyframes, so the next closure has little to correct; a wide window lets
+  // corridor closures creep 0.4-0.6 m each, one after another (docs/slam.md).
   double loop_window_m = 0.2;
   double loop_window_per_m = 0.02;   // grows by this per metre walked since the last closure
   double loop_window_max_m = 2.0;    // up to this
@@ -33,10 +32,9 @@ struct SlamOptions {
   bool confirm_reference = false;
   double loop_min_score = 0.6;       // eq. 2 score a closure needs
   // Refuse a closure whose best grid pose lies on the search window's edge (the optimum may lie
-  // outside). Off here, on for people in `pena map`: it removes wrong corridor closures (office
-  // seed 6: 2.68 -> 0.12 m SLAM RMSE) but also right ones where a drifted heading is caught at
-  // the window's edge, which a robot's wheel odometry has and a person's compass prevents
-  // (intel's std 0.030 -> 0.114 m), docs/slam.md, session 19.
+  // outside). Off here, on for people in `pena map`: it removes wrong corridor closures but also
+  // right ones where a drifted heading is caught at the window's edge, which a robot's wheel
+  // odometry has and a person's compass prevents (docs/slam.md).
   bool reject_window_edge = false;
   double degenerate_eigen_ratio = 0.05;  // translation eigenvalue ratio below: corridor, refused
   int loop_check_every = 1;          // try a closure at every n-th keyframe
@@ -63,15 +61,13 @@ struct SlamOptions {
   // maps: sd 0.019 m across, 0.076 m along), so the position sigma is loop_sigma_m along the
   // best-pinned direction of the match's J^T J and loop_sigma_m * sqrt(lambda_max / lambda_min)
   // along the weakest, at most this (m; with degenerate_eigen_ratio 0.05 the ratio gives at most
-  // 0.22 m). 0: loop_sigma_m both ways, as before session 29 (30 simulated maps: coverage 68.2 ->
-  // 71.2 %; Freiburg intel 0.0191 -> 0.0178 m, aces 0.261 -> 0.204 m; docs/slam.md).
+  // 0.22 m). 0: loop_sigma_m both ways (docs/slam.md).
   double loop_weak_sigma_max_m = 0.5;
   // Absolute heading (0: off). A person's odometry heading is held to magnetic north by the
   // dead reckoning's compass, so it does not drift as a robot's does. With this > 0 every
   // keyframe keeps its odometry heading with this sigma, and a loop closure moves positions
-  // instead of rotating whole stretches of the walk. Off: on 16 simulated missions it helped the
-  // loops a closure had rotated (loop170 seeds 1, 4, 7, 8) and hurt office runs whose odometry
-  // heading is itself 1-2 deg off (office seeds 4, 5, 7), docs/slam.md, session 19.
+  // instead of rotating whole stretches of the walk. Off: it helps loops a closure had rotated
+  // and hurts runs whose odometry heading is itself 1-2 deg off (docs/slam.md).
   double heading_prior_sigma_rad = 0.0;
   int optimize_iterations = 10;
   double max_loop_chi2 = 25.0;  // a closure disagreeing more than this after optimising is dropped
