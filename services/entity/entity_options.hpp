@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "correction_gate.hpp"
 #include "dds_participant.hpp"
 #include "live_sensor_source.hpp"
 #include "pena/io/log_source.hpp"
@@ -37,6 +38,10 @@ struct EntityServiceOptions {
   // for the fusion's answer before it goes on, and the log's pacing waits with it, so its
   // corrections do not depend on the machine's load. Command line only (--await-corrections).
   double await_corrections_s = 0.0;
+  // What corrections are applied (docs/security.md): increasing seq, and within chi-square
+  // max_chi2 of the entity's own uncertainty unless an operator sent them. Command line only
+  // (--correction-max-chi2).
+  CorrectionGateOptions corrections;
   // input "dds": the live sensor topics (entity_id required; live.entity_id is set from it).
   LiveSensorOptions live;
   io::ReadOptions read;
