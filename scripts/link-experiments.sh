@@ -64,11 +64,14 @@ fi
 # The matrix: NAME|MODE|RATE_KBIT|team-link-run options. Variants: gateway (pena-gateway's
 # defaults: 480-byte packets; map updates larger than the room in a packet go in pieces),
 # gateway-p1400 (--packet-bytes 1400 --burst-bits 16000: fewer, larger packets; see
-# docs/link-experiments.md), dds (plain DDS with flow controllers).
+# docs/link-experiments.md), gateway-open (the gateway pair with open frames, --insecure-link, to
+# measure what the seal costs; docs/security.md), dds (plain DDS with flow controllers). Every
+# gateway variant but gateway-open is sealed with a key made for the run.
 variant_opts() {
   case "$1" in
     gateway-p1400) echo "--mode gateway -- --packet-bytes 1400 --burst-bits 16000";;
     gateway) echo "--mode gateway";;
+    gateway-open) echo "--mode gateway --insecure-link";;
     dds) echo "--mode dds";;
   esac
 }

@@ -10,7 +10,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libprotobuf-dev protobuf-compiler libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev libnanoflann-dev zlib1g-dev
+  libcli11-dev libnanoflann-dev zlib1g-dev libsodium-dev
   libfastrtps-dev fastddsgen
 )
 

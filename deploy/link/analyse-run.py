@@ -187,5 +187,7 @@ result = {
     "link": link,
     "link_to_post_bit_s": rnd(link.get("to_post_bytes", 0) * 8 / duration_s if duration_s > 0 else None, 0),
     "bytes_by_class": bytes_by_class,
+    "link_sealed": gateway.get("building", {}).get("sealed"),
+    "seal_bytes_to_post": gateway.get("building", {}).get("seal_bytes_sent"),
 }
 print(json.dumps(result))

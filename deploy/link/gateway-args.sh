@@ -1,7 +1,8 @@
 # Sourced by team-link-run.sh: the pena-gateway command lines of the two ends for one run
 # (pena-gateway's DDS side: --dds-domain, --role; docs/gateway.md). Uses $out, $bld_domain,
-# $post_domain, $bld_profile, $post_profile, ${bld_files[@]}, ${post_files[@]} and the
-# addresses of netns-lib.sh.
+# $post_domain, $bld_profile, $post_profile, ${bld_files[@]}, ${post_files[@]}, $gateway_bin,
+# $link_insecure and the addresses of netns-lib.sh. The link is sealed with a key made for the
+# run ($out/gateway/link.key, docs/security.md) unless link_insecure=1.
 # gateway_pair_args RATE_KBIT DELAY_S LOSS: sets gw_bld_args and gw_post_args.
 gateway_pair_args() {
   local rate_kbit=$1 delay_s=$2 loss=$3 budget
@@ -10,6 +11,13 @@ gateway_pair_args() {
   budget=$(awk "BEGIN{print $rate_kbit*1000*0.9}")
   local common=(--budget-bit-s "$budget" --overhead-bytes 42 --duration-s 0
                 --emulate-delay-s "$delay_s" --emulate-loss "$loss")
+  if [[ ${link_insecure:-0} == 1 ]]; then
+    common+=(--insecure-link)
+  else
+    rm -f "$out/gateway/link.key"
+    "$gateway_bin" --generate-link-key "$out/gateway/link.key" > /dev/null
+    common+=(--link-key "$out/gateway/link.key")
+  fi
   local file bld_dds=() post_dds=()
   for file in "${bld_files[@]}"; do [[ $file == --profiles-file ]] || bld_dds+=(--dds-profiles-file "$file"); done
   for file in "${post_files[@]}"; do [[ $file == --profiles-file ]] || post_dds+=(--dds-profiles-file "$file"); done

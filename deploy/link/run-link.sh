@@ -13,12 +13,15 @@ set -euo pipefail
 
 rate_kbit=9.6; transport=udp; duration_s=120; entities=4; outage=""; delay_s=0; loss=0
 map_until_s=60; out_dir=""; gateway="${PENA_GATEWAY:-}"; extra=(); outage_mode=blackhole
+insecure=0
 usage() {
   cat <<USAGE
 usage: $0 [--rate-kbit 9.6] [--transport udp|tcp] [--duration-s 120] [--entities 4]
           [--outage START:END] [--outage-mode blackhole|linkdown] [--delay-s 0] [--loss 0]
-          [--map-until-s 60] [--out DIR]
+          [--map-until-s 60] [--out DIR] [--insecure-link]
           [--gateway PATH] [-- extra pena-gateway options for both ends]
+The link is sealed with a key made for the run (OUT/link.key; docs/security.md) unless
+--insecure-link. TCP carries open frames only, so --transport tcp implies --insecure-link.
 USAGE
 }
 while [[ $# -gt 0 ]]; do
@@ -34,6 +37,7 @@ while [[ $# -gt 0 ]]; do
     --map-until-s) map_until_s="$2"; shift 2;;
     --out) out_dir="$2"; shift 2;;
     --gateway) gateway="$2"; shift 2;;
+    --insecure-link) insecure=1; shift;;
     --) shift; extra=("$@"); break;;
     -h|--help) usage; exit 0;;
     *) echo "run-link.sh: unknown option '$1'" >&2; usage >&2; exit 2;;
@@ -98,6 +102,14 @@ shape "$radio_far_if"
 budget=$(awk "BEGIN{print $rate_kbit*1000*0.9}")
 common=(--budget-bit-s "$budget" --overhead-bytes 42 --duration-s "$duration_s"
         --emulate-delay-s "$delay_s" --emulate-loss "$loss")
+[[ "$transport" == tcp ]] && insecure=1
+if ((insecure)); then
+  common+=(--insecure-link)
+else
+  rm -f "$out_dir/link.key"
+  "$gateway" --generate-link-key "$out_dir/link.key" > /dev/null
+  common+=(--link-key "$out_dir/link.key")
+fi
 far_args=(--bind "$far_ip:$port" --peer "$near_ip:$port" --name far --stats "$out_dir/far.json")
 near_args=(--bind "$near_ip:$port" --peer "$far_ip:$port" --name near --stats "$out_dir/near.json"
            --team "$entities" --map-until-s "$map_until_s")
@@ -133,6 +145,7 @@ converged = far["last_map_change_s"] - near["last_map_change_s"]
 sent = near["sent"]
 print(json.dumps({
   "rate_kbit": float(rate), "transport": transport, "outage": outage, "outage_mode": mode,
+  "sealed": near["sealed"] and far["sealed"], "near_seal_bytes": near["seal_bytes_sent"],
   "maps_equal": equal, "maps": len(near["maps"]),
   "map_converged_after_last_change_s": round(converged, 2),
   "pose_age_p50_s": round(far["pose_age_p50_s"], 3), "pose_age_p99_s": round(far["pose_age_p99_s"], 3),
@@ -141,6 +154,7 @@ print(json.dumps({
   "near_wire_bytes": near["wire_bytes_sent"], "far_wire_bytes": far["wire_bytes_sent"],
   "bytes_by_class": {k: v["bytes"] for k, v in sent.items()},
   "resent_by_class": {k: v["resent"] for k, v in sent.items()},
-  "pending_deltas": near["pending_deltas"], "frames_rejected": far["frames_rejected"]}))
+  "pending_deltas": near["pending_deltas"], "frames_rejected": far["frames_rejected"],
+  "rejected": far["rejected"]}))
 sys.exit(0 if equal else 1)
 PY

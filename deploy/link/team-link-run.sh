@@ -12,13 +12,14 @@
 set -euo pipefail
 
 mode=gateway; rate_kbit=9.6; entity_rate=1; outage=""; delay_s=0; loss=0; settle_s=90
-mission=""; out=""; build="${PENA_BUILD:-}"; gateway_extra=()
+mission=""; out=""; build="${PENA_BUILD:-}"; gateway_extra=(); link_insecure=0
 usage() {
   cat <<USAGE
 usage: $0 --mission DIR --out DIR [--mode gateway|dds] [--rate-kbit 9.6] [--entity-rate 1]
           [--outage START:END] (seconds after the entities start) [--delay-s 0] [--loss 0]
           (gateway mode only: emulated in the receiving gateways, no netem on this kernel)
           [--settle-s 90] (max wait after the entities end for the post's map to converge)
+          [--insecure-link] (gateway mode: open frames; default: sealed with a key made for the run)
           [--build DIR] [-- extra pena-gateway options]
 USAGE
 }
@@ -34,6 +35,7 @@ while [[ $# -gt 0 ]]; do
     --mission) mission="$2"; shift 2;;
     --out) out="$2"; shift 2;;
     --build) build="$2"; shift 2;;
+    --insecure-link) link_insecure=1; shift;;
     --) shift; gateway_extra=("$@"); break;;
     -h|--help) usage; exit 0;;
     *) echo "team-link-run.sh: unknown option '$1'" >&2; usage >&2; exit 2;;

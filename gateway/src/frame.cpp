@@ -41,6 +41,11 @@ const char* ToString(FrameStatus status) {
     case FrameStatus::kBadCrc: return "bad_crc";
     case FrameStatus::kBadCompression: return "bad_compression";
     case FrameStatus::kBadPayload: return "bad_payload";
+    case FrameStatus::kWrongKey: return "wrong_key";
+    case FrameStatus::kUnauthenticated: return "unauthenticated";
+    case FrameStatus::kReflected: return "reflected";
+    case FrameStatus::kStale: return "stale";
+    case FrameStatus::kReplayed: return "replayed";
   }
   return "unknown";
 }

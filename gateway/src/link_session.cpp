@@ -13,9 +13,15 @@ void Require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
+// Bytes every datagram adds around an envelope: frame header and CRC, the seal if any, and the
+// configured overhead below (IP, UDP).
+std::size_t DatagramOverhead(const LinkOptions& options) {
+  return kFrameHeaderBytes + kFrameTrailerBytes + (options.key ? kSealOverheadBytes : 0) +
+         options.overhead_bytes;
+}
+
 LinkOptions Validated(LinkOptions options) {
-  const double frame_bits = 8.0 * static_cast<double>(options.packet_bytes + kFrameHeaderBytes +
-                                                      kFrameTrailerBytes + options.overhead_bytes);
+  const double frame_bits = 8.0 * static_cast<double>(options.packet_bytes + DatagramOverhead(options));
   Require(options.packet_bytes >= 64 && options.packet_bytes <= options.limits.max_payload_bytes,
           "link.packet_bytes must be in [64, limits.max_payload_bytes] bytes, got " +
               std::to_string(options.packet_bytes));
@@ -42,7 +48,9 @@ LinkSession::LinkSession(LinkOptions options, DomainSide& domain)
       domain_(domain),
       scheduler_(options_.scheduler),
       receiver_(options_.receiver),
-      bucket_(options_.budget_bit_s, options_.burst_bits) {}
+      bucket_(options_.budget_bit_s, options_.burst_bits) {
+  if (options_.key) seal_ = std::make_unique<LinkSeal>(*options_.key, options_.seal);
+}
 
 bool LinkSession::peer_alive(double now_s) const {
   return now_s - last_heard_s_ < options_.outage_timeout_s;
@@ -74,7 +82,7 @@ bool LinkSession::AddControl(link::Envelope* envelope, double now_s) const {
 }
 
 std::optional<std::string> LinkSession::BuildFrame(double now_s) {
-  const std::size_t frame_overhead = kFrameHeaderBytes + kFrameTrailerBytes + options_.overhead_bytes;
+  const std::size_t frame_overhead = DatagramOverhead(options_);
   const double available_bytes = bucket_.tokens_bits() / 8.0 - static_cast<double>(frame_overhead);
   if (available_bytes < 24.0) return std::nullopt;  // not even a small envelope fits yet
   link::Envelope envelope;
@@ -102,6 +110,10 @@ std::optional<std::string> LinkSession::BuildFrame(double now_s) {
   if (!urgent && !full && !paced) return std::nullopt;
 
   std::string frame = EncodeFrame(envelope.SerializeAsString(), options_.compress);
+  if (seal_) {
+    frame = seal_->Seal(frame, now_s);
+    stats_.seal_bytes_sent += kSealOverheadBytes;
+  }
   scheduler_.Commit(selection, now_s, &stats_);
   if (envelope.has_ack()) receiver_.ClearAck();
   receiver_.ClearSummary();
@@ -157,6 +169,13 @@ std::string LinkSession::DecodeItems(const link::Envelope& envelope,
 }
 
 FrameResult LinkSession::OnFrame(std::string_view bytes, double now_s) {
+  // A sealed link opens (authenticates, checks replay) before it reads a byte of the frame.
+  FrameResult opened;
+  if (seal_) {
+    opened = seal_->Open(bytes, now_s);
+    if (!opened.ok()) return Reject(opened.status, opened.message);
+    bytes = opened.payload;
+  }
   FrameResult frame = DecodeFrame(bytes, options_.limits);
   if (!frame.ok()) return Reject(frame.status, frame.message);
   link::Envelope envelope;

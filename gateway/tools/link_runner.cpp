@@ -66,6 +66,20 @@ void PutDdsStats(std::ostringstream& json, const DdsDomainStats& stats) {
        << ", \"sync_requests_answered\": " << stats.sync_requests_answered << "}";
 }
 
+// Whether the link is sealed, what the seal cost, and the rejected datagrams by status.
+void PutSecurity(std::ostringstream& json, const RunnerOptions& options, const LinkStats& stats) {
+  json << ", \"sealed\": " << (options.link.key ? "true" : "false");
+  if (options.link.key) json << ", \"key_fingerprint\": \"" << options.link.key->Fingerprint() << "\"";
+  json << ", \"seal_bytes_sent\": " << stats.seal_bytes_sent << ", \"rejected\": {";
+  const char* separator = "";
+  for (std::size_t s = 1; s < kFrameStatusCount; ++s) {
+    if (stats.rejected[s] == 0) continue;
+    json << separator << "\"" << ToString(static_cast<FrameStatus>(s)) << "\": " << stats.rejected[s];
+    separator = ", ";
+  }
+  json << "}";
+}
+
 // The summary: this side's maps, what it received, what it sent per class.
 std::string Summary(const RunnerOptions& options, const LinkSession& session,
                     const InMemoryDomain& domain, const SyntheticTeam* team, const DdsDomain* dds,
@@ -95,7 +109,9 @@ std::string Summary(const RunnerOptions& options, const LinkSession& session,
        << ", \"alarms_received\": " << alarms
        << ", \"frames_sent\": " << stats.frames_sent << ", \"wire_bytes_sent\": " << stats.wire_bytes_sent
        << ", \"frames_received\": " << stats.frames_received
-       << ", \"frames_rejected\": " << stats.rejected_total() << ", \"resyncs\": " << stats.resyncs
+       << ", \"frames_rejected\": " << stats.rejected_total();
+  PutSecurity(json, options, stats);
+  json << ", \"resyncs\": " << stats.resyncs
        << ", \"updates_reassembled\": " << stats.updates_reassembled
        << ", \"reassembled_invalid\": " << stats.reassembled_invalid
        << ", \"pending_deltas\": " << session.scheduler().pending_deltas();
@@ -142,6 +158,15 @@ EmulatedLinkOptions Emulation(const RunnerOptions& options, double start_s) {
   return emulation;
 }
 
+// Logs a rejected datagram: the first 10 of each status, then every 1000th, so a flood of
+// forged datagrams cannot flood the log too.
+void LogRejected(const std::string& name, const FrameResult& result, const LinkStats& stats) {
+  const std::uint64_t count = stats.rejected[static_cast<std::size_t>(result.status)];
+  if (count > 10 && count % 1000 != 0) return;
+  spdlog::warn("{}: rejected datagram ({} {} so far): {}", name, count, ToString(result.status),
+               result.message);
+}
+
 // The loop, for either transport (UdpLink or TcpLink: Send, Receive).
 template <typename Transport>
 std::string Run(const RunnerOptions& options, Transport& link, const std::atomic<bool>& stop) {
@@ -158,6 +183,13 @@ std::string Run(const RunnerOptions& options, Transport& link, const std::atomic
                options.tcp ? "tcp" : "udp", options.udp.bind_address, options.udp.bind_port,
                options.udp.peer_address,
                options.udp.peer_port, options.link.budget_bit_s, session.session());
+  if (options.link.key) {
+    spdlog::info("{}: link sealed (XChaCha20-Poly1305), key fingerprint {}", options.name,
+                 options.link.key->Fingerprint());
+  } else {
+    spdlog::warn("{}: OPEN LINK (--insecure-link): frames are neither authenticated nor encrypted",
+                 options.name);
+  }
   if (dds) {
     std::string send, publish;
     for (DdsClass c : options.dds_options.role.send) send += std::string(send.empty() ? "" : ",") + ToString(c);
@@ -175,7 +207,7 @@ std::string Run(const RunnerOptions& options, Transport& link, const std::atomic
     for (const std::string& frame : inbound.Receive(now_s)) {
       const std::size_t before = domain.delivered().size();
       const FrameResult result = session.OnFrame(frame, now_s);
-      if (!result.ok()) spdlog::warn("{}: rejected frame: {}: {}", options.name, ToString(result.status), result.message);
+      if (!result.ok()) LogRejected(options.name, result, session.stats());
       for (std::size_t i = before; i < domain.delivered().size(); ++i) {
         if (std::holds_alternative<MapChange>(domain.delivered()[i])) last_change_s = now_s;
       }

@@ -1,6 +1,7 @@
 // pena-gateway: bridges a local domain across a bandwidth-limited link (docs/gateway.md).
 // The local domain is a DDS domain (--dds-domain, --role), a synthetic team (--team N) or
-// receive-only.
+// receive-only. The link is sealed with --link-key FILE, or open with --insecure-link
+// (docs/security.md).
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -30,6 +31,57 @@ void SplitEndpoint(const std::string& text, const std::string& option, std::stri
   const long value = std::strtol(text.c_str() + colon + 1, nullptr, 10);
   if (value < 0 || value > 65535) throw CLI::ValidationError(option, "port out of range: " + text);
   *port = static_cast<std::uint16_t>(value);
+}
+
+// The link key flags (docs/security.md).
+struct KeyFlags {
+  std::string key_file;
+  std::string generate_file;
+  bool insecure = false;
+};
+
+void AddKeyOptions(CLI::App& app, pena::gateway::RunnerOptions& options, KeyFlags& flags) {
+  app.add_option("--link-key", flags.key_file,
+                 "the link's key file (64 hex digits, mode 0600; both ends hold the same one); "
+                 "required unless --insecure-link");
+  app.add_flag("--insecure-link", flags.insecure,
+               "open frames: neither authenticated nor encrypted (experiments only)");
+  app.add_option("--generate-link-key", flags.generate_file,
+                 "write a new random link key to FILE (mode 0600), print its fingerprint and exit");
+  app.add_option("--link-max-clock-offset-s", options.link.seal.max_clock_offset_s,
+                 "refuse sealed frames stamped further from this gateway's clock (s; 0: no check)")
+      ->capture_default_str();
+}
+
+// Checks the key flags; throws CLI::ValidationError naming the option. The key itself is read
+// after parsing (ReadLinkKey), so a bad key file is reported as such.
+void CheckKeyFlags(const KeyFlags& flags, const pena::gateway::RunnerOptions& options) {
+  if (!flags.key_file.empty() && flags.insecure) {
+    throw CLI::ValidationError("--link-key", "and --insecure-link exclude each other");
+  }
+  if (flags.key_file.empty() && !flags.insecure) {
+    throw CLI::ValidationError("--link-key",
+                               "no link key: pass --link-key FILE (make one with --generate-link-key "
+                               "FILE; docs/security.md), or --insecure-link for an open link in experiments");
+  }
+  if (options.tcp && !flags.insecure) {
+    throw CLI::ValidationError("--tcp", "carries open frames only (it exists for the transport "
+                                        "measurement): use --insecure-link");
+  }
+}
+
+// Writes a new key for --generate-link-key; the exit status.
+int GenerateKey(const std::string& path) {
+  try {
+    const pena::gateway::LinkKey key = pena::gateway::GenerateLinkKey();
+    pena::gateway::WriteLinkKey(path, key);
+    std::printf("wrote link key %s (fingerprint %s); copy it to both gateways of the link\n",
+                path.c_str(), key.Fingerprint().c_str());
+    return EXIT_SUCCESS;
+  } catch (const std::exception& error) {
+    spdlog::error("pena-gateway: {}", error.what());
+    return EXIT_FAILURE;
+  }
 }
 
 // Registers every command-line option; the endpoints and outages are parsed after.
@@ -138,8 +190,12 @@ int main(int argc, char** argv) {
   AddOptions(app, options, bind, peer, no_compress, outages);
   DdsFlags dds_flags;
   AddDdsOptions(app, options, dds_flags);
+  KeyFlags key_flags;
+  AddKeyOptions(app, options, key_flags);
   try {
     app.parse(argc, argv);
+    if (!key_flags.generate_file.empty()) return GenerateKey(key_flags.generate_file);
+    CheckKeyFlags(key_flags, options);
     SplitEndpoint(bind, "--bind", &options.udp.bind_address, &options.udp.bind_port);
     SplitEndpoint(peer, "--peer", &options.udp.peer_address, &options.udp.peer_port);
     for (const std::string& outage : outages) {
@@ -159,6 +215,7 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, OnSignal);
   pena::services::InstallCrashReport("pena-gateway");
   try {
+    if (!key_flags.key_file.empty()) options.link.key = pena::gateway::ReadLinkKey(key_flags.key_file);
     std::fputs(pena::gateway::RunGateway(options, g_stop).c_str(), stdout);
   } catch (const std::exception& error) {
     spdlog::error("pena-gateway: {}", error.what());

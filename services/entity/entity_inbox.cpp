@@ -21,12 +21,64 @@ std::string PoseCsv(const geometry::Pose2& pose) {
   return out.str();
 }
 
+// The covariance a correction carries, or zero if it is not finite (unknown).
+Eigen::Matrix3d CovarianceOf(const std::array<double, 9>& row_major) {
+  Eigen::Matrix3d covariance;
+  for (int i = 0; i < 9; ++i) covariance(i / 3, i % 3) = row_major[static_cast<std::size_t>(i)];
+  if (!covariance.allFinite()) return Eigen::Matrix3d::Zero();
+  return 0.5 * (covariance + covariance.transpose());
+}
+
 }  // namespace
+
+GateResult EntityService::Gate(const pena_dds::Correction& sample) {
+  const bool from_operator = !sample.operator_id().to_string().empty();
+  // A lockstep answer without a correction moves nothing: only its sequence counts.
+  if (sample.confidence() <= 0.0) return gate_.CheckSequenceOnly(sample.seq());
+  const geometry::Pose2 frame = FromDds(sample.map_from_odom());
+  if (options_.start_unknown) {
+    // The first placement has nothing to keep: the entity has no world position before it.
+    if (!map_from_entity_ || sample.kind() != pena_dds::CORRECTION_MAP_FROM_ODOM) {
+      return gate_.CheckSequenceOnly(sample.seq());
+    }
+    return gate_.CheckFrame(sample.seq(), from_operator, *map_from_entity_, frame, last_world_from_body_,
+                            last_covariance_);
+  }
+  // Nor does one the pipeline ignores for its low confidence.
+  if (sample.confidence() < options_.pipeline.min_correction_confidence) {
+    return gate_.CheckSequenceOnly(sample.seq());
+  }
+  if (sample.kind() == pena_dds::CORRECTION_MAP_FROM_ODOM) {
+    return gate_.CheckFrame(sample.seq(), from_operator, pipeline_->map_from_odom(), frame,
+                            last_world_from_body_, last_covariance_);
+  }
+  return gate_.CheckPose(sample.seq(), from_operator, sample.reference_seq(),
+                         FromDds(sample.world_from_body()), CovarianceOf(sample.covariance()));
+}
+
+bool EntityService::ExpectedGlobalMap(const std::string& map_id, const char* what) {
+  if (map_id == kGlobalMapId) return true;
+  ++summary_.global_maps_refused;
+  spdlog::warn("{}: {} for map id '{}' refused: this entity takes the '{}' map only", entity_id_,
+               what, map_id, kGlobalMapId);
+  return false;
+}
 
 void EntityService::Handle(const pena_dds::Correction& sample) {
   if (sample.entity_id().to_string() != entity_id_) return;
   ++summary_.corrections_received;
+  const GateResult gate = Gate(sample);
+  if (gate.verdict == GateVerdict::kOutOfSequence) {
+    ++summary_.corrections_out_of_sequence;
+    spdlog::warn("{}: correction {} dropped: {}", entity_id_, sample.seq(), gate.message);
+    return;
+  }
   answered_seq_ = std::max<std::uint64_t>(answered_seq_, sample.reference_seq());
+  if (gate.verdict == GateVerdict::kHeld) {
+    ++summary_.corrections_held;
+    spdlog::warn("{}: correction {} held, not applied: {}", entity_id_, sample.seq(), gate.message);
+    return;
+  }
   // A lockstep answer without a correction (pena-fusion --lockstep): the attempt found nothing
   // to apply.
   if (sample.confidence() <= 0.0) return;
@@ -56,6 +108,7 @@ void EntityService::Handle(const pena_dds::Correction& sample) {
 
 void EntityService::Handle(const pena_dds::GlobalMapDelta& sample) {
   ++summary_.global_deltas_received;
+  if (!ExpectedGlobalMap(sample.map_id().to_string(), "global map delta")) return;
   line_map::MapDelta delta;
   try {
     delta = FromDds(sample);
@@ -80,6 +133,7 @@ void EntityService::Handle(const pena_dds::GlobalMapDelta& sample) {
 }
 
 void EntityService::Handle(const pena_dds::GlobalMapSnapshot& sample) {
+  if (!ExpectedGlobalMap(sample.map_id().to_string(), "global map snapshot")) return;
   try {
     const line_map::MapSnapshot snapshot = FromDds(sample);
     if (snapshot.version <= pipeline_->global_map().version()) return;

@@ -116,6 +116,7 @@ void ValidateEntityOptions(const EntityServiceOptions& options) {
   require(options.await_corrections_s >= 0.0,
           "--await-corrections must be >= 0 (mission seconds between awaited attempts; 0 = off), "
           "got " + std::to_string(options.await_corrections_s));
+  CorrectionGate{options.corrections};  // throws naming corrections.<field>
   require(options.wait_for_readers_s >= 0.0, "wait_for_readers_s must be >= 0 s, got " +
                                                  std::to_string(options.wait_for_readers_s));
   require(options.dds.domain_id >= 0 && options.dds.domain_id <= 232,

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "correction_gate.hpp"
 #include "dds_participant.hpp"
 #include "live_sensor_source.hpp"
 #include "pena/io/log_source.hpp"
@@ -33,6 +34,10 @@ struct EntityServiceOptions {
   // Lockstep with pena-fusion --lockstep --correction-interval of the same value (mission s; 0 =
   // off): wait for the fusion's answer at the scans it attempts. Command line only.
   double await_corrections_s = 0.0;
+  // What corrections are applied (docs/security.md): increasing seq, and within chi-square
+  // max_chi2 of the entity's own uncertainty unless an operator sent them. Command line only
+  // (--correction-max-chi2).
+  CorrectionGateOptions corrections;
   // input "dds": the live sensor topics (entity_id required; live.entity_id is set from it).
   LiveSensorOptions live;
   io::ReadOptions read;

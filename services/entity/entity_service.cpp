@@ -31,6 +31,7 @@ std::int64_t SecondsToNs(double seconds) { return static_cast<std::int64_t>(seco
 EntityService::EntityService(EntityServiceOptions options)
     : options_(std::move(options)),
       source_(IsLiveInput(options_.input) ? nullptr : io::OpenLog(options_.input, options_.read)),
+      gate_(options_.corrections),
       participant_(options_.dds, "pena-entity"),
       pose_writer_(participant_, topics::kPose),
       status_writer_(participant_, topics::kStatus),
@@ -239,6 +240,8 @@ void EntityService::Feed(const sensors::SensorRecord& record) {
   if (!step) return;
   if (options_.start_unknown) ToPlacedFrame(*step);
   last_stamp_s_ = step->odometry.stamp_s;
+  last_world_from_body_ = step->world_from_body;
+  last_covariance_ = step->covariance;
   trajectory_.push_back({last_stamp_s_, step->world_from_body});
   if (step->plan_round) LogPlanShifts();
   // The scan's map change, then its reference scan, then its pose: each carries what came
@@ -251,6 +254,7 @@ void EntityService::Feed(const sensors::SensorRecord& record) {
         ToDdsReferenceScan(std::get<sensors::LaserScan>(record), *step, entity_id_, ++scan_seq_,
                            map_version, options_.range_quantum_m);
     Send(scan_writer_, scan);
+    gate_.Remember(scan_seq_, step->world_from_body, step->covariance);
     ++summary_.reference_scans_sent;
   }
   pena_dds::EntityPose pose =

@@ -43,6 +43,9 @@ struct EntityRunSummary {
   long send_failures = 0;
   long corrections_received = 0;
   long global_deltas_received = 0;
+  long corrections_out_of_sequence = 0;  // dropped: seq not above the last one seen
+  long corrections_held = 0;             // not applied: beyond the entity's uncertainty
+  long global_maps_refused = 0;          // global map samples for another map id than "global"
   long answers_awaited = 0;  // --await-corrections: reference scans whose answer was waited for
   long answers_missed = 0;   // ... and not received within the timeout
   std::uint64_t local_map_version = 0;
@@ -93,6 +96,10 @@ class EntityService {
   geometry::Pose2 StartFrame(const geometry::Pose2& known_world_from_start) const;
   void ToPlacedFrame(pipeline::ScanStep& step) const;
   void HandleFrameCorrection(const pena_dds::Correction& sample);
+  // The gate's verdict on a correction (correction_gate.hpp): sequence, then its bound.
+  GateResult Gate(const pena_dds::Correction& sample);
+  // False (and counted, logged) for a global map sample of another map id.
+  bool ExpectedGlobalMap(const std::string& map_id, const char* what);
   void PublishDelta(const line_map::MapDelta& delta, double stamp_s);
   void PublishSnapshot();
   void PublishStatus(pena_dds::EntityState state, const std::string& message = "");
@@ -131,6 +138,10 @@ class EntityService {
   std::int64_t paused_ns_ = 0;             // wall time spent waiting for answers
   // --unknown-start: map_from_entity as the fusion last sent it (nullopt: not placed yet).
   std::optional<geometry::Pose2> map_from_entity_;
+  // The last step's pose (as published) and covariance, which bound frame corrections.
+  geometry::Pose2 last_world_from_body_;
+  Eigen::Matrix3d last_covariance_ = Eigen::Matrix3d::Zero();
+  CorrectionGate gate_;
 
   WorkQueue<Event> inbox_;
   Participant participant_;

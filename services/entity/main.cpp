@@ -22,7 +22,7 @@ struct Overrides {
   std::string config, input, entity_id, kind, output_dir, participant_profile, log_level, plan;
   std::vector<std::string> profiles_files;
   std::optional<double> rate, wait_for_readers_s, linger_s, await_corrections_s;
-  std::optional<double> reorder_window_s, idle_timeout_s;
+  std::optional<double> reorder_window_s, idle_timeout_s, correction_max_chi2;
   std::optional<int> domain_id;
   bool record = false;
   bool start_unknown = false;
@@ -53,6 +53,9 @@ void AddOptions(CLI::App& app, Overrides& o) {
                  "Lockstep with pena-fusion --lockstep: wait for the answer to every reference "
                  "scan at least this many mission seconds after the last awaited one (the "
                  "fusion's --correction-interval)");
+  app.add_option("--correction-max-chi2", o.correction_max_chi2,
+                 "Hold a correction whose move exceeds this chi-square of the entity's own pose "
+                 "covariance (default 16.27: 99.9 % at 3 DoF; 0: no bound); operators' are applied");
   app.add_option("--domain", o.domain_id, "DDS domain id (0..232)");
   app.add_option("--profile", o.participant_profile, "Participant profile (default pena_loopback)");
   app.add_option("--profiles-file", o.profiles_files, "DDS XML profile file (repeatable)");
@@ -92,6 +95,7 @@ EntityServiceOptions BuildOptions(const Overrides& o) {
   if (o.wait_for_readers_s) options.wait_for_readers_s = *o.wait_for_readers_s;
   if (o.linger_s) options.linger_s = *o.linger_s;
   if (o.await_corrections_s) options.await_corrections_s = *o.await_corrections_s;
+  if (o.correction_max_chi2) options.corrections.max_chi2 = *o.correction_max_chi2;
   if (!o.log_level.empty()) options.log_level = o.log_level;
   pena::services::ValidateEntityOptions(options);
   return options;
@@ -121,6 +125,12 @@ int main(int argc, char** argv) {
                    summary.corrections_received, summary.global_deltas_received,
                    summary.local_map_version, summary.local_map_segments,
                    summary.interrupted ? " (stopped by a signal)" : "");
+      if (summary.corrections_out_of_sequence + summary.corrections_held + summary.global_maps_refused > 0) {
+        spdlog::warn("{}: {} corrections dropped out of sequence, {} held beyond the entity's "
+                     "uncertainty; {} global map samples of another map id refused",
+                     summary.entity_id, summary.corrections_out_of_sequence, summary.corrections_held,
+                     summary.global_maps_refused);
+      }
       if (summary.answers_awaited > 0) {
         spdlog::info("{}: lockstep: {} answers awaited, {} not received in time", summary.entity_id,
                      summary.answers_awaited, summary.answers_missed);

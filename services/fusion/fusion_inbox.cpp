@@ -147,7 +147,8 @@ void FusionService::Handle(const pena_dds::OperatorCorrection& sample, const Sam
   correction.stamp_s = sample.stamp_s();
   correction.world_from_body = services::FromDds(sample.world_from_body());
   correction.confidence = 1.0;
-  SendCorrection(entity_id, correction, 0, store_->state().global_version());
+  SendCorrection(entity_id, correction, 0, store_->state().global_version(),
+                 sample.operator_id().to_string());
   if (corrections_) corrections_->Forget(entity_id);  // the entity's frame is the operator's now
   spdlog::info("operator {} set {}'s pose at {:.3f} s; relayed as a correction",
                sample.operator_id().to_string(), entity_id, sample.stamp_s());

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "pena/io/line_csv.hpp"
@@ -257,10 +258,15 @@ void FusionService::RequestEntitySnapshot(const std::string& entity_id) {
 
 void FusionService::SendCorrection(const std::string& entity_id,
                                    const pipeline::Correction& correction,
-                                   std::uint64_t reference_seq, std::uint64_t for_version) {
+                                   std::uint64_t reference_seq, std::uint64_t for_version,
+                                   const std::string& operator_id) {
   const std::lock_guard<std::mutex> lock(send_mutex_);
-  pena_dds::Correction sample = ToDdsCorrection(correction, entity_id, ++correction_seq_[entity_id],
-                                                for_version, reference_seq);
+  // Entities drop a seq that does not increase: starting from the clock (ms) keeps a restarted
+  // fusion above what it sent before.
+  std::uint64_t& seq = correction_seq_[entity_id];
+  seq = std::max(seq + 1, static_cast<std::uint64_t>(std::max<std::int64_t>(0, NowNs() / 1'000'000)));
+  pena_dds::Correction sample = ToDdsCorrection(correction, entity_id, seq, for_version, reference_seq);
+  SetBounded(sample.operator_id(), operator_id, "operator_id");
   if (!correction_writer_.Write(sample)) spdlog::warn("DDS refused a correction for {}", entity_id);
   stats_.Count("sent", topics::kCorrection.name, entity_id,
                pena_dds::CorrectionPubSubType().getSerializedSizeProvider(&sample)());

@@ -127,9 +127,10 @@ class FusionService {
   void PublishDelta(const line_map::MapDelta& delta);
   void PublishSnapshot();
   void RequestEntitySnapshot(const std::string& entity_id);
-  // Any thread (the correction worker sends too).
+  // Any thread (the correction worker sends too). operator_id: set when relaying an operator's.
   void SendCorrection(const std::string& entity_id, const pipeline::Correction& correction,
-                      std::uint64_t reference_seq, std::uint64_t for_version);
+                      std::uint64_t reference_seq, std::uint64_t for_version,
+                      const std::string& operator_id = "");
   void Periodic();
   void WriteOutputs() const;
   bool FromSelf(const SampleMeta& meta) const;

@@ -1,6 +1,6 @@
 // A team's picture through an emulated 9.6 kbit/s radio link with delay, loss and a 30 s outage
-// (simulated time): no map delta is lost, the far side's maps equal the near side's, every alarm
-// arrives once, and poses stay fresh.
+// (simulated time), sealed as deployed (docs/security.md): no map delta is lost, the far side's
+// maps equal the near side's, every alarm arrives once, and poses stay fresh.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <set>
 
 #include "link_pair.hpp"
+#include "pena/gateway/link_crypto.hpp"
 #include "pena/gateway/synthetic_team.hpp"
 
 namespace pena::gateway {
@@ -41,7 +42,10 @@ TEST(EndToEnd, NoMapDeltaLostThroughA30SecondOutageAt9600Bits) {
   radio.outages = {{100.0, 130.0}};
   EmulatedLinkOptions back = radio;
   back.seed = 2;
-  LinkPair pair(Endpoint(1), Endpoint(2), radio, back);
+  LinkOptions near = Endpoint(1);
+  LinkOptions far = Endpoint(2);
+  near.key = far.key = GenerateLinkKey();
+  LinkPair pair(near, far, radio, back);
   SyntheticTeamOptions team_options;  // 4 entities, 2 Hz poses, walls every 2 s, alarms
   team_options.map_until_s = 200.0;
   SyntheticTeam team(team_options);
@@ -85,12 +89,14 @@ TEST(EndToEnd, NoMapDeltaLostThroughA30SecondOutageAt9600Bits) {
   const double p99 = Percentile(pose_ages_s, 0.99);
   EXPECT_LT(p99, 2.0);
   const LinkStats& stats = pair.near_session.stats();
-  std::printf("[figures] 9.6 kbit/s, 0.2 s delay, 5%% loss, outage 100-130 s: pose age p50 %.2f s "
+  EXPECT_EQ(pair.far_session.stats().rejected_total(), 0U);
+  std::printf("[figures] sealed, 9.6 kbit/s, 0.2 s delay, 5%% loss, outage 100-130 s: pose age p50 %.2f s "
               "p99 %.2f s (%zu poses); maps equal %.1f s after the last change; %zu alarms; "
-              "wire bytes near->far %llu (map %llu, pose %llu, annotation %llu, control %llu); "
+              "wire bytes near->far %llu (seal %llu, map %llu, pose %llu, annotation %llu, control %llu); "
               "map items resent %llu; frames lost %llu (loss) %llu (outage) %llu (queue)\n",
               p50, p99, pose_ages_s.size(), convergence_s, team.alarms(),
               static_cast<unsigned long long>(stats.wire_bytes_sent),
+              static_cast<unsigned long long>(stats.seal_bytes_sent),
               static_cast<unsigned long long>(stats.sent[4].bytes),
               static_cast<unsigned long long>(stats.sent[2].bytes),
               static_cast<unsigned long long>(stats.sent[1].bytes),

@@ -112,7 +112,7 @@ inline std::string Input(const std::vector<std::string>& corpus, std::mt19937_64
 
 // What a fuzz run saw: inputs per FrameStatus, items delivered, rejections without a message.
 struct FuzzCounts {
-  std::array<std::size_t, 9> by_status{};
+  std::array<std::size_t, kFrameStatusCount> by_status{};
   std::size_t delivered = 0;
   std::size_t silent_rejections = 0;
   std::size_t corpus_fragments = 0;  // fragment items in the real frames mutated

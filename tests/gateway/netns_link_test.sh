@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End to end through network namespaces: two pena-gateway processes across a tc-shaped
-# 9.6 kbit/s link with a silent 8 s outage (deploy/link/run-link.sh). Passes if the far side's
-# maps equal the near side's, poses and alarms arrived, and no delta is pending.
+# 9.6 kbit/s link with a silent 8 s outage (deploy/link/run-link.sh), sealed with a key made for
+# the run. Passes if the far side's maps equal the near side's, poses and alarms arrived, no
+# delta is pending, and no datagram was rejected.
 # Skips (exit 77) without root, ip, tc or python3. usage: netns_link_test.sh PENA_GATEWAY
 set -euo pipefail
 gateway="$1"
@@ -20,6 +21,7 @@ import json, sys
 r = json.loads(sys.argv[1])
 problems = [what for what, bad in [
     ("maps differ", not r["maps_equal"]), ("no poses", r["poses_received"] == 0),
+    ("not sealed", not r["sealed"]), ("datagrams rejected", r["frames_rejected"] != 0),
     ("no alarms", r["alarms_received"] == 0), ("deltas pending", r["pending_deltas"] != 0),
     ("no outage seen", r["max_pose_gap_s"] < 8.0), ("stale poses", r["pose_age_p99_s"] > 2.0)] if bad]
 print("FAILED: " + ", ".join(problems) if problems else "passed")

@@ -30,7 +30,16 @@ enum class FrameStatus {
   kBadCrc,           // CRC32 mismatch: corrupted in transit
   kBadCompression,   // deflated payload that does not inflate
   kBadPayload,       // well-framed, but the envelope inside is malformed (set by the session)
+  // Sealed datagrams (link_crypto.hpp; set by the session when the link has a key):
+  kWrongKey,         // sealed under another key id, or an open frame at a sealed link
+  kUnauthenticated,  // the tag does not verify: forged, or modified in transit
+  kReflected,        // authentic, but sealed by this very end (sent back to it)
+  kStale,            // authentic, but its counter is further from this clock than allowed
+  kReplayed,         // authentic, but already received, or older than the replay window
 };
+// The number of FrameStatus values (counters are kept per status).
+inline constexpr std::size_t kFrameStatusCount = 14;
+static_assert(static_cast<std::size_t>(FrameStatus::kReplayed) + 1 == kFrameStatusCount);
 
 // A short name for logs ("bad_crc").
 const char* ToString(FrameStatus status);

@@ -5,6 +5,7 @@
 // keep each other's picture: alarms, latest poses, corrections and line maps.
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -12,6 +13,7 @@
 
 #include "pena/gateway/domain_side.hpp"
 #include "pena/gateway/frame.hpp"
+#include "pena/gateway/link_crypto.hpp"
 #include "pena/gateway/link_receiver.hpp"
 #include "pena/gateway/link_scheduler.hpp"
 #include "pena/gateway/link_stats.hpp"
@@ -31,6 +33,8 @@ struct LinkOptions {
   double probe_interval_s = 1.0;       // resync requests while the peer is silent
   bool compress = true;                // deflate a frame's payload when that makes it smaller
   std::uint64_t session = 0;           // this endpoint's session id; 0: random
+  std::optional<LinkKey> key;          // seal every datagram with it (docs/security.md); none: open
+  SealOptions seal;                    // replay window and clock limit of a sealed link
   FrameLimits limits;
   SchedulerOptions scheduler;
   ReceiverOptions receiver;
@@ -42,9 +46,10 @@ class LinkSession {
   // outlive the session.
   LinkSession(LinkOptions options, DomainSide& domain);
 
-  // Takes the domain's new items and returns the frames to send now (possibly none).
+  // Takes the domain's new items and returns the datagrams to send now (possibly none): link
+  // frames, sealed if the link has a key.
   std::vector<std::string> Poll(double now_s);
-  // Handles one received frame; a rejected one (status and message for the caller to log)
+  // Handles one received datagram; a rejected one (status and message for the caller to log)
   // changes nothing.
   FrameResult OnFrame(std::string_view bytes, double now_s);
 
@@ -54,6 +59,8 @@ class LinkSession {
   const LinkScheduler& scheduler() const { return scheduler_; }
   const LinkReceiver& receiver() const { return receiver_; }
   std::uint64_t session() const { return options_.session; }
+  // True if datagrams are sealed (the options held a key).
+  bool sealed() const { return seal_ != nullptr; }
 
  private:
   std::optional<std::string> BuildFrame(double now_s);
@@ -65,6 +72,7 @@ class LinkSession {
 
   LinkOptions options_;
   DomainSide& domain_;
+  std::unique_ptr<LinkSeal> seal_;
   LinkScheduler scheduler_;
   LinkReceiver receiver_;
   TokenBucket bucket_;

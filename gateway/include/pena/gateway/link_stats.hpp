@@ -24,10 +24,11 @@ struct ClassCounters {
 struct LinkStats {
   std::array<ClassCounters, kItemClassCount> sent{};  // by ItemClass
   std::uint64_t frames_sent = 0;
-  std::uint64_t frame_bytes_sent = 0;  // frames as written (header, payload, CRC)
+  std::uint64_t frame_bytes_sent = 0;  // datagrams as written (frame; sealed: plus the seal)
+  std::uint64_t seal_bytes_sent = 0;   // of those, the seal's header and tag (0 on an open link)
   std::uint64_t wire_bytes_sent = 0;   // plus the configured per-frame overhead (IP, UDP)
   std::uint64_t frames_received = 0;   // accepted
-  std::array<std::uint64_t, 9> rejected{};  // by FrameStatus (kOk unused)
+  std::array<std::uint64_t, kFrameStatusCount> rejected{};  // by FrameStatus (kOk unused)
   std::uint64_t poses_replaced = 0;    // a newer pose overwrote one not yet sent
   std::uint64_t deltas_pruned = 0;     // map deltas the peer confirmed (by version)
   std::uint64_t snapshots_queued = 0;  // whole maps sent because the peer's history had a gap
