@@ -44,10 +44,6 @@ std::string ReadBytes(const std::filesystem::path& path) {
   return bytes.str();
 }
 
-std::filesystem::path Dataset(const std::string& relative) {
-  return std::filesystem::path(PENA_SHARED_DIR) / "datasets" / relative;
-}
-
 double JsonNumber(const std::string& json, const std::string& key) {
   const std::size_t at = json.find("\"" + key + "\": ");
   if (at == std::string::npos) return std::nan("");

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <string>
 
+#include "test_data.hpp"
+
 namespace pena::testing {
 
 // Exit status and output of one pena run.
@@ -21,9 +23,6 @@ std::filesystem::path FreshDir(const std::string& name);
 
 // Whole file contents as bytes.
 std::string ReadBytes(const std::filesystem::path& path);
-
-// Path of a file in ../shared/datasets.
-std::filesystem::path Dataset(const std::string& relative);
 
 // The number after `"key": ` in a JSON text (the first such key); NaN when absent.
 double JsonNumber(const std::string& json, const std::string& key);

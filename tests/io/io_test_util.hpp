@@ -12,6 +12,7 @@
 
 #include "pena/io/log_source.hpp"
 #include "pena/sensors/record.hpp"
+#include "test_data.hpp"
 
 namespace pena::io::testing {
 
