@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 
+#include "scoped_temp_dir.hpp"
 #include "test_data.hpp"
 
 namespace pena::testing {
@@ -18,7 +19,7 @@ struct PenaRun {
 // Runs `pena <args>` (args are passed through a shell: quote paths with spaces).
 PenaRun RunPena(const std::string& args);
 
-// A fresh empty directory under the test temp dir.
+// A fresh empty directory in this test's own temporary directory (removed when the test ends).
 std::filesystem::path FreshDir(const std::string& name);
 
 // Whole file contents as bytes.
