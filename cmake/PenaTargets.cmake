@@ -25,8 +25,10 @@ function(pena_add_test name)
   cmake_parse_arguments(ARG "SERIAL" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest_main)
+  # tests/common: the temporary directories and data paths every test uses.
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/common)
   target_compile_definitions(${name} PRIVATE
-    PENA_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"
+    PENA_DATA_DIR="${PENA_DATA_DIR}"
     PENA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   pena_set_warnings(${name})
   include(GoogleTest)

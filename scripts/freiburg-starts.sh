@@ -35,7 +35,7 @@ pena="$build/tools/pena/pena"
 [[ "$nstarts" == 3 || "$nstarts" == 5 || "$nstarts" == 25 ]] ||
   { echo "freiburg-starts: --starts must be 3, 5 or 25, not '$nstarts'" >&2; exit 2; }
 [[ -x "$pena" ]] || { echo "freiburg-starts: $pena not built" >&2; exit 1; }
-datasets=${PENA_DATASETS:-../shared/datasets}
+datasets=${PENA_DATA_DIR:-data}  # the Freiburg logs (data/README.md)
 
 # The start frames: "" is the logged first odometry pose; X and Y move it by about 1 cm, Z and W
 # by about 1 cm the other way (only with --starts 5).

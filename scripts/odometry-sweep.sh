@@ -32,7 +32,7 @@ while [[ $# -gt 0 ]]; do
 done
 pena="$build/tools/pena/pena"
 [[ -x "$pena" ]] || { echo "odometry-sweep: $pena not built (make -C $build pena)" >&2; exit 1; }
-datasets=${PENA_DATASETS:-../shared/datasets}
+datasets=${PENA_DATA_DIR:-data}  # the Freiburg logs (data/README.md)
 mkdir -p "$work"
 
 # field NAME JSON: the first number after "NAME": in a one-line JSON object.

@@ -36,7 +36,7 @@ void ExpectOneLineError(const PenaRun& run, const std::string& file, int line) {
 }
 
 TEST(CliInfo, SummarisesMitCsailLog) {
-  const PenaRun run = RunPena("info " + Dataset("freiburg/mit-csail.clf.gz").string());
+  const PenaRun run = RunPena("info " + DataPath("freiburg/mit-csail.clf.gz").string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("1988"), std::string::npos) << run.out;  // scans
   EXPECT_NE(run.out.find("361"), std::string::npos) << run.out;   // beams
@@ -86,16 +86,16 @@ TEST(CliInfo, MissingFileIsAnError) {
   EXPECT_NE(run.err.find("/nonexistent/pena.clf"), std::string::npos) << run.err;
 }
 
-// The datasets README: raw odometry scores about 1.7 m on mit-csail (7.4 m intel, 0.55 m aces).
+// data/README.md: raw odometry scores about 1.7 m on mit-csail (7.4 m intel, 0.55 m aces).
 TEST(CliEval, ReproducesRawOdometryFigureOnMitCsail) {
   const auto dir = FreshDir("cli_eval_mit");
   const auto tum = dir / "odometry.tum";
   const PenaRun exported =
-      RunPena("export --log " + Dataset("freiburg/mit-csail.clf.gz").string() + " --tum " +
+      RunPena("export --log " + DataPath("freiburg/mit-csail.clf.gz").string() + " --tum " +
               tum.string());
   ASSERT_EQ(exported.exit_code, 0) << exported.err;
   const PenaRun run = RunPena("eval --json --trajectory " + tum.string() + " --relations " +
-                              Dataset("freiburg/mit-csail.relations").string());
+                              DataPath("freiburg/mit-csail.relations").string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   std::smatch match;
   ASSERT_TRUE(std::regex_search(

@@ -91,8 +91,7 @@ TEST(CliMap, SlamClosuresFileListsMatchesThatAgreeWithTheTruth) {
 }
 
 TEST(CliMap, RadishCorrectedLogMapsOnItsLoggedPoses) {
-  const auto log = Dataset("radish-corrected/aces-corrected.log.gz");
-  if (!std::filesystem::exists(log)) GTEST_SKIP() << log << " not present";
+  const auto log = DataPath("radish-corrected/aces-corrected.log.gz");
   const auto out = FreshDir("map_aces");
   const PenaRun run = RunPena("map --quiet --log " + log.string() + " --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -105,7 +104,7 @@ TEST(CliMap, RadishCorrectedLogMapsOnItsLoggedPoses) {
 TEST(CliMap, MissingTrajectoryFileGivesOneLineError) {
   const auto out = FreshDir("map_bad");
   const PenaRun run =
-      RunPena("map --log " + Dataset("radish-corrected/aces-corrected.log.gz").string() +
+      RunPena("map --log " + DataPath("radish-corrected/aces-corrected.log.gz").string() +
               " --trajectory " + (out / "missing.tum").string() + " --out " + out.string());
   EXPECT_NE(run.exit_code, 0);
   EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;

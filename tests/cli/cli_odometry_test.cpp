@@ -122,13 +122,13 @@ TEST(CliOdometry, StartOptionSetsTheFirstPose) {
 TEST(CliOdometry, MitCsailRunsAndItsTrajectoryEvaluates) {
   const auto out = FreshDir("odo_mit");
   const PenaRun run =
-      RunPena("odometry --quiet --log " + Dataset("freiburg/mit-csail.clf.gz").string() +
+      RunPena("odometry --quiet --log " + DataPath("freiburg/mit-csail.clf.gz").string() +
               " --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(io::ReadTum(out / "trajectory.tum").size(), 1988u);  // one pose per FLASER line
   EXPECT_EQ(run.out.find("dead reckoning:"), std::string::npos) << "a robot: " << run.out;
   const PenaRun eval =
-      RunPena("eval --json --relations " + Dataset("freiburg/mit-csail.relations").string() +
+      RunPena("eval --json --relations " + DataPath("freiburg/mit-csail.relations").string() +
               " --trajectory " + (out / "trajectory.tum").string());
   ASSERT_EQ(eval.exit_code, 0) << eval.err;
   EXPECT_NE(eval.out.find("\"translational_error_m\""), std::string::npos) << eval.out;

@@ -12,14 +12,14 @@
 namespace pena::testing {
 
 PenaRun RunPena(const std::string& args) {
-  // CTest runs test cases as parallel processes sharing TempDir(): names must be unique.
+  // Runs in this test's own temporary directory, so that even a relative --out stays in it.
   static int run_count = 0;
-  const std::string tag = std::to_string(getpid()) + "_" + std::to_string(++run_count);
-  const std::filesystem::path dir = ::testing::TempDir();
+  const std::string tag = std::to_string(++run_count);
+  const std::filesystem::path dir = ProcessTempDir();
   const auto out_path = dir / ("pena_stdout_" + tag + ".txt");
   const auto err_path = dir / ("pena_stderr_" + tag + ".txt");
-  const std::string command = std::string(PENA_BINARY) + " " + args + " >" + out_path.string() +
-                              " 2>" + err_path.string();
+  const std::string command = "cd '" + dir.string() + "' && " + std::string(PENA_BINARY) + " " +
+                              args + " >" + out_path.string() + " 2>" + err_path.string();
   const int status = std::system(command.c_str());
   PenaRun run;
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -30,22 +30,13 @@ PenaRun RunPena(const std::string& args) {
   return run;
 }
 
-std::filesystem::path FreshDir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path FreshDir(const std::string& name) { return FreshTempDir(name); }
 
 std::string ReadBytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream bytes;
   bytes << in.rdbuf();
   return bytes.str();
-}
-
-std::filesystem::path Dataset(const std::string& relative) {
-  return std::filesystem::path(PENA_SHARED_DIR) / "datasets" / relative;
 }
 
 double JsonNumber(const std::string& json, const std::string& key) {

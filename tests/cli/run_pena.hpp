@@ -4,6 +4,9 @@
 #include <filesystem>
 #include <string>
 
+#include "scoped_temp_dir.hpp"
+#include "test_data.hpp"
+
 namespace pena::testing {
 
 // Exit status and output of one pena run.
@@ -16,14 +19,11 @@ struct PenaRun {
 // Runs `pena <args>` (args are passed through a shell: quote paths with spaces).
 PenaRun RunPena(const std::string& args);
 
-// A fresh empty directory under the test temp dir.
+// A fresh empty directory in this test's own temporary directory (removed when the test ends).
 std::filesystem::path FreshDir(const std::string& name);
 
 // Whole file contents as bytes.
 std::string ReadBytes(const std::filesystem::path& path);
-
-// Path of a file in ../shared/datasets.
-std::filesystem::path Dataset(const std::string& relative);
 
 // The number after `"key": ` in a JSON text (the first such key); NaN when absent.
 double JsonNumber(const std::string& json, const std::string& key);

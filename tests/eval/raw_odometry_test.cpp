@@ -1,4 +1,4 @@
-// Reproduces the raw-odometry figures of ../shared/datasets/README.md on the Freiburg benchmark:
+// Reproduces the raw-odometry figures of data/README.md on the Freiburg benchmark:
 // the FLASER odometry pose fields, scored against the ground-truth relations.
 #include <gtest/gtest.h>
 
@@ -9,12 +9,12 @@
 #include "pena/eval/relation_error.hpp"
 #include "pena/io/carmen.hpp"
 #include "pena/io/trajectory_io.hpp"
+#include "test_data.hpp"
 
 namespace pena::eval {
 namespace {
 
-const std::filesystem::path kFreiburgDir =
-    std::filesystem::path(PENA_SHARED_DIR) / "datasets" / "freiburg";
+const std::filesystem::path kFreiburgDir = pena::testing::DataPath("freiburg");
 
 // The odometry pose of every scan, stamped with the scan's stamp (the relations' stamps).
 geometry::Trajectory ScanOdometry(const std::filesystem::path& log_path) {

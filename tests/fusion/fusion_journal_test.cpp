@@ -10,6 +10,7 @@
 #include "pena/fusion/fusion_codec.hpp"
 #include "pena/fusion/fusion_store.hpp"
 #include "pena/io/input_error.hpp"
+#include "scoped_temp_dir.hpp"
 
 namespace pena::fusion {
 namespace {
@@ -18,9 +19,9 @@ namespace fs = std::filesystem;
 using test::Moved;
 using test::Wall;
 
+// A path `name` in this test's own temporary directory, not yet created.
 fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("pena_fusion_test_" + name + "_" +
-                                                    std::to_string(::getpid()));
+  const fs::path dir = pena::testing::ProcessTempDir() / name;
   fs::remove_all(dir);
   return dir;
 }

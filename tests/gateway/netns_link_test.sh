@@ -11,7 +11,7 @@ if [[ $(id -u) -ne 0 ]] || ! command -v ip >/dev/null || ! command -v tc >/dev/n
    ! command -v python3 >/dev/null; then
   echo "skipped: needs root, ip, tc and python3"; exit 77
 fi
-out="$(mktemp -d /tmp/pena-netns-test.XXXXXX)"
+out="$(mktemp -d -t pena-netns-test.XXXXXX)"
 trap 'rm -rf "$out"' EXIT
 result="$("$here/../../deploy/link/run-link.sh" --gateway "$gateway" --rate-kbit 9.6 --duration-s 24 \
   --outage 6:14 --map-until-s 12 --out "$out/run")" || { echo "run-link.sh failed: $result"; cat "$out"/run/*.out; exit 1; }

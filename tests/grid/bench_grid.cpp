@@ -1,5 +1,5 @@
 // Scans per second of the occupancy grid update on 361-beam scans (180 deg at 0.5 deg), one core.
-// Synthetic rooms of 10, 20 and 40 m, and the real seattle log when ../shared is there.
+// Synthetic rooms of 10, 20 and 40 m, and the real seattle log of data/radish-corrected.
 // Run: build/tests/grid/bench_grid (scans_per_s = items_per_second = scans per second).
 #include <benchmark/benchmark.h>
 
@@ -84,7 +84,7 @@ void BM_LocalGridInsert(benchmark::State& state) {
 void BM_SeattleGlobalGridInsert(benchmark::State& state) {
   const testing::PosedScans data = testing::ReadRadish("seattle");
   if (data.scans.empty()) {
-    state.SkipWithError("radish-corrected/seattle not found");
+    state.SkipWithError("data/radish-corrected/seattle has no posed scans");
     return;
   }
   const Walk walk{data.scans, data.poses};

@@ -8,6 +8,7 @@
 
 #include "pena/io/log_source.hpp"
 #include "pena/sensors/laser_scan.hpp"
+#include "test_data.hpp"
 
 namespace pena::grid::testing {
 
@@ -16,13 +17,11 @@ struct PosedScans {
   std::vector<geometry::Pose2> poses;  // world_from_laser, as the log gives it
 };
 
-// The log `name` ("seattle", "intel", ...) of ../shared/datasets/radish-corrected; empty when
-// the data set is not there.
+// The log `name` ("seattle", "intel", ...) of data/radish-corrected (throws when unreadable).
 inline PosedScans ReadRadish(const std::string& name) {
-  const std::filesystem::path path = std::filesystem::path(PENA_SHARED_DIR) / "datasets" /
-                                     "radish-corrected" / (name + "-corrected.log.gz");
+  const std::filesystem::path path =
+      pena::testing::DataPath("radish-corrected/" + name + "-corrected.log.gz");
   PosedScans result;
-  if (!std::filesystem::exists(path)) return result;
   const std::unique_ptr<io::LogSource> log = io::OpenLog(path);
   while (std::optional<sensors::SensorRecord> record = log->Next()) {
     auto* scan = std::get_if<sensors::LaserScan>(&*record);

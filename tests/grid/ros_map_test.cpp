@@ -11,13 +11,14 @@
 #include "grid_test_util.hpp"
 #include "pena/grid/occupancy_grid.hpp"
 #include "pena/io/input_error.hpp"
+#include "scoped_temp_dir.hpp"
 
 namespace pena::io {
 namespace {
 
 std::filesystem::path TempStem(const std::string& name) {
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "pena_grid" /
+  const std::filesystem::path dir = pena::testing::ProcessTempDir() /
                                     (std::string(info->test_suite_name()) + "." + info->name());
   std::filesystem::create_directories(dir);
   return dir / name;

@@ -12,13 +12,15 @@
 
 #include "pena/io/log_source.hpp"
 #include "pena/sensors/record.hpp"
+#include "scoped_temp_dir.hpp"
+#include "test_data.hpp"
 
 namespace pena::io::testing {
 
-// A fresh path under the GoogleTest temp dir, unique per test.
+// A path in this test's own temporary directory (removed when the test process ends).
 inline std::filesystem::path TempPath(const std::string& name) {
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "pena_io" /
+  const std::filesystem::path dir = pena::testing::ProcessTempDir() /
                                     (std::string(info->test_suite_name()) + "." + info->name());
   std::filesystem::create_directories(dir);
   return dir / name;

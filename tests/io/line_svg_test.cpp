@@ -6,6 +6,8 @@
 #include <regex>
 #include <sstream>
 
+#include "scoped_temp_dir.hpp"
+
 namespace pena::io {
 namespace {
 
@@ -17,7 +19,8 @@ std::string Slurp(const std::filesystem::path& path) {
 }
 
 TEST(LineSvg, DrawsEveryLayerWithLegendAndScaleBar) {
-  const auto path = std::filesystem::path(::testing::TempDir()) / "plan.svg";
+  const pena::testing::ScopedTempDir dir("line-svg");
+  const auto path = dir / "plan.svg";
   WriteLineSvg(path, {{"walls", "#808080", 0.1, {{{0, 0}, {10, 0}}, {{10, 0}, {10, 6}}}},
                       {"plan", "#ff8000", 0.05, {{{0, 0.2}, {10, 0.2}}}}});
   const std::string svg = Slurp(path);

@@ -1,4 +1,4 @@
-// The real logs of ../shared/datasets read fully in strict mode (see its README for the counts).
+// The real logs of data/ read fully in strict mode (see data/README.md for the counts).
 #include <gtest/gtest.h>
 #include <zlib.h>
 
@@ -15,10 +15,6 @@ namespace pena::io {
 namespace {
 
 using sensors::LaserScan;
-
-std::filesystem::path Dataset(const std::string& relative) {
-  return std::filesystem::path(PENA_SHARED_DIR) / "datasets" / relative;
-}
 
 // Independent count of lines starting with "FLASER " (plain zlib, no parsing).
 std::size_t CountFlaserLines(const std::filesystem::path& path) {
@@ -68,14 +64,14 @@ bool IsScanStamp(const std::set<double>& stamps, double stamp_s) {
 
 struct FreiburgCase {
   const char* name;
-  std::size_t scans;  // from datasets/README.md
+  std::size_t scans;  // from data/README.md
   std::size_t beams;
 };
 
 class FreiburgLog : public ::testing::TestWithParam<FreiburgCase> {};
 
 TEST_P(FreiburgLog, ReadsFullyInStrictModeWithReadmeScanCount) {
-  const auto path = Dataset(std::string("freiburg/") + GetParam().name + ".clf.gz");
+  const auto path = pena::testing::DataPath(std::string("freiburg/") + GetParam().name + ".clf.gz");
   const LogSummary summary = Summarise(path);
   EXPECT_EQ(summary.scans, GetParam().scans);
   EXPECT_EQ(summary.scans, CountFlaserLines(path));
@@ -83,7 +79,7 @@ TEST_P(FreiburgLog, ReadsFullyInStrictModeWithReadmeScanCount) {
   EXPECT_EQ(summary.skipped, 0u);
   // The README: relation stamps are scan stamps (mit-csail's relations round them to 10 us).
   const auto relations =
-      ReadRelations(Dataset(std::string("freiburg/") + GetParam().name + ".relations"));
+      ReadRelations(pena::testing::DataPath(std::string("freiburg/") + GetParam().name + ".relations"));
   ASSERT_FALSE(relations.empty());
   const std::size_t matched = static_cast<std::size_t>(
       std::count_if(relations.begin(), relations.end(), [&](const geometry::Relation& r) {
@@ -105,7 +101,7 @@ INSTANTIATE_TEST_SUITE_P(Datasets, FreiburgLog,
 class RadishLog : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(RadishLog, ReadsCleanlyInStrictMode) {
-  const auto path = Dataset(std::string("radish-corrected/") + GetParam() + "-corrected.log.gz");
+  const auto path = pena::testing::DataPath(std::string("radish-corrected/") + GetParam() + "-corrected.log.gz");
   const LogSummary summary = Summarise(path);
   EXPECT_GT(summary.scans, 0u);
   // Only radish intel has scans stepping back in time (4, by up to 0.86 s): dropped and counted.

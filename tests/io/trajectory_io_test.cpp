@@ -88,7 +88,7 @@ TEST(TrajectoryIo, RelationsRoundTrip) {
 }
 
 TEST(TrajectoryIo, ReadsFreiburgRelationsFile) {
-  const auto path = std::filesystem::path(PENA_SHARED_DIR) / "datasets/freiburg/mit-csail.relations";
+  const auto path = pena::testing::DataPath("freiburg/mit-csail.relations");
   std::ifstream in(path);
   std::size_t lines = 0;
   for (std::string line; std::getline(in, line);) lines += line.empty() ? 0 : 1;

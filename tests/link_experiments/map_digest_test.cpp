@@ -9,6 +9,7 @@
 
 #include "pena/io/line_csv.hpp"
 #include "pena/line_map/line_segment.hpp"
+#include "scoped_temp_dir.hpp"
 
 namespace pena::services {
 namespace {
@@ -28,10 +29,10 @@ TEST(MapDigest, EqualForTheSameMapReadBackFromALineCsv) {
   std::vector<io::LineRow> rows;
   for (auto it = walls.rbegin(); it != walls.rend(); ++it)
     rows.push_back({it->id, it->segment, "1"});
-  const auto path = std::filesystem::temp_directory_path() / "pena_map_digest_test.csv";
+  const pena::testing::ScopedTempDir dir("map-digest");
+  const auto path = dir / "walls.csv";
   io::WriteLineCsv(path, rows, ",observations");
   EXPECT_EQ(MapDigest(walls), MapDigest(io::ReadLineCsv(path)));
-  std::filesystem::remove(path);
 }
 
 TEST(MapDigest, ChangesWhenASegmentMovesOneMillimetre) {

@@ -14,7 +14,7 @@ for bin in "$gateway" "$build"/services/{entity/pena-entity,fusion/pena-fusion,m
   [[ -x $bin ]] || { echo "skipped: $bin not built"; exit 77; }
 done
 export PENA_GATEWAY=$gateway
-out=$(mktemp -d /tmp/pena-link-test.XXXXXX)
+out=$(mktemp -d -t pena-link-test.XXXXXX)
 trap 'rm -rf "$out"' EXIT
 status=0
 "$repo/scripts/link-experiments.sh" --quick --modes gateway --no-docs --build "$build" --out "$out" \

@@ -10,11 +10,13 @@
 #include <sstream>
 #include <variant>
 
+#include "scoped_temp_dir.hpp"
+
 namespace pena::io::testing {
 
 std::filesystem::path TempPath(const std::string& name) {
   const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "pena_test_log" /
+  const std::filesystem::path dir = pena::testing::ProcessTempDir() /
                                     (std::string(test->test_suite_name()) + "." + test->name());
   std::filesystem::create_directories(dir);
   return dir / name;

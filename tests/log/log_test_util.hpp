@@ -11,7 +11,7 @@
 
 namespace pena::io::testing {
 
-// A fresh path under the GoogleTest temp dir, unique per test.
+// A path in this test's own temporary directory (removed when the test process ends).
 std::filesystem::path TempPath(const std::string& name);
 
 // A header for a firefighter with a 361-beam, 180 deg laser.

@@ -9,6 +9,7 @@
 #include "log_test_util.hpp"
 #include "pena/io/carmen.hpp"
 #include "pena_log.pb.h"
+#include "test_data.hpp"
 
 namespace pena::io {
 namespace {
@@ -210,8 +211,7 @@ std::size_t InflatedSize(const std::filesystem::path& path) {
 
 TEST(MissionLog, RealScansRoundTripAndTakeLessSpaceThanCarmen) {
   // 1988 scans of 361 beams, FLASER lines only: the file is exactly the scans as CARMEN text.
-  const std::filesystem::path carmen = PENA_SHARED_DIR "/datasets/freiburg/mit-csail.clf.gz";
-  if (!std::filesystem::exists(carmen)) GTEST_SKIP() << carmen << " not available";
+  const std::filesystem::path carmen = pena::testing::DataPath("freiburg/mit-csail.clf.gz");
   std::vector<sensors::SensorRecord> records;
   const auto source = OpenCarmenLog(carmen);
   while (auto record = source->Next()) records.push_back(std::move(*record));

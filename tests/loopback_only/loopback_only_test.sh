@@ -26,7 +26,7 @@ command -v unshare >/dev/null || skip "no unshare command (util-linux)"
 source "$(dirname "$0")/../common/veth_pair.sh"
 tag="plo$$"
 ns="${tag}a" peer="${tag}b"
-work=$(mktemp -d /tmp/pena-loopback-only.XXXXXX)
+work=$(mktemp -d -t pena-loopback-only.XXXXXX)
 capture_pid=""
 cleanup() {
   [ -n "$capture_pid" ] && kill "$capture_pid" 2>/dev/null

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "dds_participant.hpp"
+#include "scoped_temp_dir.hpp"
 
 namespace pena::services::testing {
 
@@ -59,13 +60,9 @@ inline int TestDomain(int offset = 0) {
   throw std::runtime_error("no free DDS test domain in 100..229");
 }
 
-// A fresh scratch directory under /tmp.
+// A fresh, empty directory `name` in this test's own temporary directory (removed at exit).
 inline std::filesystem::path ScratchDir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("pena-services-test-" + std::to_string(getpid())) / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
+  return pena::testing::FreshTempDir(name);
 }
 
 }  // namespace pena::services::testing

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "scoped_temp_dir.hpp"
 #include "versions_log.hpp"
 
 namespace pena::services {
@@ -15,11 +16,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A path `name` in this test's own temporary directory, no file there yet.
 fs::path FreshFile(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("pena-versions-log-test-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path path = dir / name;
+  const fs::path path = pena::testing::ProcessTempDir() / name;
   fs::remove(path);
   return path;
 }

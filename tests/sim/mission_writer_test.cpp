@@ -12,6 +12,7 @@
 #include "pena/io/mission_log.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/sim/mission_picture.hpp"
+#include "scoped_temp_dir.hpp"
 #include "sim_test_util.hpp"
 
 namespace pena::sim {
@@ -31,8 +32,9 @@ Scenario TwoEntityMission() {
   return scenario;
 }
 
+// A path `name` in this test's own temporary directory, not yet created.
 fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("pena_sim_" + name);
+  const fs::path dir = pena::testing::ProcessTempDir() / name;
   fs::remove_all(dir);
   return dir;
 }
