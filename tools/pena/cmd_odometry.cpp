@@ -180,7 +180,7 @@ RunResult RunChain(io::LogSource& source, const OdometryArgs& args,
 void WriteCsv(const std::filesystem::path& path, const RunResult& run) {
   std::ofstream out(path);
   out << "stamp,x,y,theta,status,score,points,reference_changed,wide_search,prior_x,prior_y,"
-         "prior_theta,gated,stale,sd_x,sd_y,sd_theta,cov_xy,cov_xtheta,cov_ytheta\n";
+         "prior_theta,gated,stale,sd_x,sd_y,sd_theta,cov_xy,cov_xtheta,cov_ytheta,innovation_nees\n";
   char line[400];
   for (const odometry::OdometryEstimate& e : run.estimates) {
     const geometry::Pose2& p = e.world_from_body;
@@ -188,11 +188,11 @@ void WriteCsv(const std::filesystem::path& path, const RunResult& run) {
     const Eigen::Vector3d sd = e.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
     std::snprintf(line, sizeof(line),
                   "%.6f,%.6f,%.6f,%.6f,%s,%.4f,%d,%d,%d,%.6f,%.6f,%.6f,%d,%d,"
-                  "%.4f,%.4f,%.5f,%.6g,%.6g,%.6g\n",
+                  "%.4f,%.4f,%.5f,%.6g,%.6g,%.6g,%.4g\n",
                   e.stamp_s, p.x_m, p.y_m, p.theta_rad, odometry::ToString(e.status), e.score,
                   e.points, e.reference_changed ? 1 : 0, e.wide_search ? 1 : 0, q.x_m, q.y_m,
                   q.theta_rad, e.gated ? 1 : 0, e.stale ? 1 : 0, sd.x(), sd.y(), sd.z(),
-                  e.covariance(0, 1), e.covariance(0, 2), e.covariance(1, 2));
+                  e.covariance(0, 1), e.covariance(0, 2), e.covariance(1, 2), e.innovation_nees);
     out << line;
   }
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");

@@ -11,6 +11,7 @@
 #include "burst_timing.hpp"
 #include "frozen_odometry.hpp"
 #include "gate_confirmation.hpp"
+#include "innovation.hpp"
 #include "local_map.hpp"
 #include "motion_tracker.hpp"
 #include "pace_check.hpp"
@@ -144,7 +145,8 @@ struct LaserOdometry::Impl {
   // heading (prior_gate_refuse_gyro_rad: aliased, output at the prior); kTrusted: outside, but
   // the last prior_gate_confirm scans all were (the motion sensor is what is wrong).
   enum class GateDecision { kInside, kGated, kRefused, kTrusted };
-  GateDecision CheckPriorGate(const OdometryEstimate& out);
+  // Also sets out.innovation_nees for wheel odometry (innovation.hpp).
+  GateDecision CheckPriorGate(OdometryEstimate& out);
   bool OffTheGyroHeading() const;
   // How far a match may deviate from the prior before the gate holds it (nullopt: no gate now).
   struct GateAllowance {

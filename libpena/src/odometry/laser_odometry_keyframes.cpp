@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "laser_odometry_impl.hpp"
+#include "pose_covariance.hpp"
 #include "reference_fill.hpp"
 
 namespace pena::odometry {
@@ -34,7 +35,16 @@ bool LaserOdometry::Impl::OffTheGyroHeading() const {
          refuse_rad;
 }
 
-LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(const OdometryEstimate& out) {
+LaserOdometry::Impl::GateDecision LaserOdometry::Impl::CheckPriorGate(OdometryEstimate& out) {
+  if (motion.mode() == MotionPrior::kOdometry && motion_since_keyframe) {
+    const Eigen::Matrix3d match_covariance = internal::MatchCovariance(
+        match_information, 0.5 * std::max(last_searched.size_x_m, last_searched.size_y_m),
+        0.5 * last_searched.size_theta_rad, options.covariance);
+    out.innovation_nees = internal::ComputeInnovation(out.world_from_prior, estimate,
+                                                      *motion_since_keyframe, match_covariance,
+                                                      options.covariance)
+                              .nees;
+  }
   const std::optional<GateAllowance> allowed = PriorGateAllowance();
   if (!allowed) return GateDecision::kInside;
   const geometry::Pose2 deviation = geometry::Between(out.world_from_prior, estimate);

@@ -183,6 +183,10 @@ struct OdometryEstimate {
   // gated and refused against the gyro + compass heading: output at the prior
   bool refused = false;
   bool stale = false;  // repeats an earlier scan (delivered late): not a keyframe
+  // Wheel odometry: the match's squared Mahalanobis distance from its prior under the odometry's
+  // noise model (covariance.motion_*) plus the match's covariance; chi-square with 3 degrees of
+  // freedom when both are honest. 0 where not computed (people, unmatched scans).
+  double innovation_nees = 0.0;
 };
 
 // Counters over the run, for logs and reports.
