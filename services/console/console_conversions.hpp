@@ -1,0 +1,28 @@
+#pragma once
+// pena-console's conversions between the DDS types and the picture's (console_picture.hpp):
+// console_from_dds.cpp one way, console_to_dds.cpp the other.
+
+#include <cstdint>
+#include <string>
+
+#include "browser_request.hpp"
+#include "console_picture.hpp"
+#include "pena_dds/entity.h"
+#include "pena_dds/operator.h"
+
+namespace pena::services {
+
+// heard_ns: this machine's clock at reception.
+PoseUpdate ToPicture(const pena_dds::EntityPose& sample, std::int64_t heard_ns);
+StatusUpdate ToPicture(const pena_dds::EntityStatus& sample, std::int64_t heard_ns);
+AnnotationRecord ToPicture(const pena_dds::Annotation& sample);
+// Rotations and translations carry their geometry (localisation::OperatorCorrection).
+CorrectionRecord ToPicture(const pena_dds::OperatorCorrection& sample);
+
+// The three-point rotation as it goes on the wire: kind OPERATOR_ROTATE, applying from
+// from_stamp_s (mission time). Throws std::length_error naming a field that does not fit.
+pena_dds::OperatorCorrection ToDdsRotation(const RotateRequest& request, double from_stamp_s,
+                                           const std::string& operator_id,
+                                           const std::string& correction_id, std::uint64_t seq);
+
+}  // namespace pena::services
