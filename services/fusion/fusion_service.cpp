@@ -65,6 +65,7 @@ FusionService::FusionService(FusionServiceOptions options)
                    }),
       sync_reader_(participant_, topics::kSyncRequest,
                    Enqueue<pena_dds::SyncRequestPubSubType>("sync_request")) {
+  operator_log_.emplace(options_.state_dir / "operator_corrections.csv");
   CreateOperatorEndpoints();
   if (options_.lockstep) lockstep_order_.emplace(options_.lockstep_order);
   const fusion::FusionRecovery& recovery = store_->recovery();
@@ -259,7 +260,15 @@ void FusionService::SendCorrection(const std::string& entity_id,
                                    const pipeline::Correction& correction,
                                    std::uint64_t reference_seq, std::uint64_t for_version) {
   const std::lock_guard<std::mutex> lock(send_mutex_);
-  pena_dds::Correction sample = ToDdsCorrection(correction, entity_id, ++correction_seq_[entity_id],
+  pipeline::Correction out = correction;
+  if (reference_seq > 0 && out.kind == pipeline::Correction::Kind::kPose && out.confidence > 0.0) {
+    const auto barrier = operator_barrier_s_.find(entity_id);
+    if (barrier != operator_barrier_s_.end() && out.stamp_s <= barrier->second) {
+      out.confidence = 0.0;  // from before the operator's move: an answer, not a correction
+      stats_.Add("corrections_superseded_by_operator");
+    }
+  }
+  pena_dds::Correction sample = ToDdsCorrection(out, entity_id, ++correction_seq_[entity_id],
                                                 for_version, reference_seq);
   if (!correction_writer_.Write(sample)) spdlog::warn("DDS refused a correction for {}", entity_id);
   stats_.Count("sent", topics::kCorrection.name, entity_id,

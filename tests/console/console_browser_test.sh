@@ -6,7 +6,9 @@
 #
 # Exit 77 (skipped) when chromium or the npm packages (tests/console/node_modules, installed by
 # scripts/setup.sh) are missing. Leaves its figures and screenshots in $PENA_CONSOLE_TEST_OUT
-# (default: a temporary directory, removed on success).
+# (default: a temporary directory, removed on success). PENA_CONSOLE_TEST_ROTATE=<entity> adds
+# the three-point rotation check; PENA_CONSOLE_TEST_FUSION_ARGS goes to pena-fusion
+# (--no-corrections: free-running); PENA_CONSOLE_TEST_RATE is the mission's time scale (2).
 set -euo pipefail
 
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -50,14 +52,15 @@ echo "pena-console on http://127.0.0.1:$PORT/ (DDS domain $DOMAIN)"
 # The team at 2x real time: the browser's checks need the mission to last about a minute.
 # The domain's lock is held here; run-team.sh is told the domain.
 PENA_BUILD=$BUILD PENA_DEMO_MISSION=$OUT/mission PENA_DDS_DOMAIN=$DOMAIN \
-  PENA_DEMO_RATE=${PENA_CONSOLE_TEST_RATE:-2} \
+  PENA_DEMO_RATE=${PENA_CONSOLE_TEST_RATE:-2} PENA_FUSION_ARGS=${PENA_CONSOLE_TEST_FUSION_ARGS:-} \
   bash "$REPO/deploy/demo/run-team.sh" "$OUT/run" > "$OUT/team.log" 2>&1 &
 TEAM=$!
 PIDS+=("$TEAM")
 
 status=0
 node "$HERE/console_browser_test.js" --url "http://127.0.0.1:$PORT/" --out "$OUT" \
-  --mission "$OUT/mission" --entities 4 --chromium "$CHROMIUM" ${PENA_CONSOLE_TEST_ROTATE:+--rotate "$PENA_CONSOLE_TEST_ROTATE"} ||
+  --mission "$OUT/mission" --entities 4 --chromium "$CHROMIUM" \
+  ${PENA_CONSOLE_TEST_ROTATE:+--rotate "$PENA_CONSOLE_TEST_ROTATE"} 2>&1 | tee "$OUT/browser.log" ||
   status=$?
 if ((status)); then
   echo "console_browser_test: failed; logs and screenshots in $OUT"
