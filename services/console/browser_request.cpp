@@ -1,6 +1,8 @@
 #include "browser_request.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -55,6 +57,40 @@ std::string EntityField(const json& object, const char* type) {
   return id;
 }
 
+std::string StringField(const json& object, const char* type, const char* name,
+                        std::size_t max_bytes) {
+  const json& value = Field(object, type, name);
+  if (!value.is_string()) throw Refused(std::string(type) + "." + name + ": not a string");
+  std::string text = value.get<std::string>();
+  if (text.size() > max_bytes) {
+    throw Refused(std::string(type) + "." + name + ": at most " + std::to_string(max_bytes) +
+                  " bytes, got " + std::to_string(text.size()));
+  }
+  return text;
+}
+
+AnnotateRequest ParseAnnotate(const json& message) {
+  static const char* const kKinds[] = {"victim_found", "dangerous_area", "corridor_crossing",
+                                       "elevator",     "stairs",         "exit",
+                                       "free_text"};
+  AnnotateRequest a;
+  a.kind = StringField(message, "annotate", "kind", 32);
+  if (std::find(std::begin(kKinds), std::end(kKinds), a.kind) == std::end(kKinds)) {
+    throw Refused("annotate.kind: unknown kind '" + a.kind + "'");
+  }
+  a.position_m = PointField(message, "annotate", "position");
+  if (message.contains("radius_m")) {
+    const json& r = message["radius_m"];
+    if (!r.is_number()) throw Refused("annotate.radius_m: not a number");
+    a.radius_m = r.get<double>();
+    if (!std::isfinite(a.radius_m) || a.radius_m < 0.0 || a.radius_m > 1000.0) {
+      throw Refused("annotate.radius_m: must be in [0, 1000] m");
+    }
+  }
+  if (message.contains("text")) a.text = StringField(message, "annotate", "text", 255);
+  return a;
+}
+
 BrowserCommand ParseCommand(const json& message) {
   const json& type_value = Field(message, "message", "type");
   if (!type_value.is_string()) throw Refused("message.type: not a string");
@@ -68,7 +104,10 @@ BrowserCommand ParseCommand(const json& message) {
     r.correct_m = PointField(message, "rotate", "correct");
     return r;
   }
-  throw Refused("message.type: unknown type '" + type.substr(0, 32) + "' (rotate, ping)");
+  if (type == "annotate") return ParseAnnotate(message);
+  if (type == "retract") return RetractRequest{StringField(message, "retract", "id", 48)};
+  throw Refused("message.type: unknown type '" + type.substr(0, 32) +
+                "' (rotate, annotate, retract, ping)");
 }
 
 }  // namespace

@@ -25,10 +25,26 @@ struct RotateRequest {
   Eigen::Vector2d correct_m = Eigen::Vector2d::Zero();
 };
 
+// A mark on the map: {"type": "annotate", "kind": "victim_found", "position": [x, y],
+// "radius_m": 0, "text": "..."}; kind one of victim_found, dangerous_area, corridor_crossing,
+// elevator, stairs, exit, free_text; radius_m in [0, 1000] (optional), text at most 255 bytes
+// (optional).
+struct AnnotateRequest {
+  std::string kind;
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+  double radius_m = 0.0;
+  std::string text;
+};
+
+// {"type": "retract", "id": "<annotation_id>"}: the mark no longer holds.
+struct RetractRequest {
+  std::string annotation_id;
+};
+
 // {"type": "ping"}: answered with "pong" (the page measures its round trip).
 struct PingRequest {};
 
-using BrowserCommand = std::variant<RotateRequest, PingRequest>;
+using BrowserCommand = std::variant<RotateRequest, AnnotateRequest, RetractRequest, PingRequest>;
 
 // A parsed request, or the reason it was refused.
 struct BrowserRequest {

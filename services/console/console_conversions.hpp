@@ -12,8 +12,9 @@
 
 namespace pena::services {
 
-// heard_ns: this machine's clock at reception.
-PoseUpdate ToPicture(const pena_dds::EntityPose& sample, std::int64_t heard_ns);
+// heard_ns: this machine's clock at reception; source_ns: the writer's when it wrote it.
+PoseUpdate ToPicture(const pena_dds::EntityPose& sample, std::int64_t heard_ns,
+                     std::int64_t source_ns);
 StatusUpdate ToPicture(const pena_dds::EntityStatus& sample, std::int64_t heard_ns);
 AnnotationRecord ToPicture(const pena_dds::Annotation& sample);
 // Rotations and translations carry their geometry (localisation::OperatorCorrection).
@@ -24,5 +25,9 @@ CorrectionRecord ToPicture(const pena_dds::OperatorCorrection& sample);
 pena_dds::OperatorCorrection ToDdsRotation(const RotateRequest& request, double from_stamp_s,
                                            const std::string& operator_id,
                                            const std::string& correction_id, std::uint64_t seq);
+
+// An annotation as it goes on the wire (the same annotation_id again replaces it). Throws
+// std::length_error naming a field that does not fit, std::invalid_argument for an unknown kind.
+pena_dds::Annotation ToDdsAnnotation(const AnnotationRecord& annotation);
 
 }  // namespace pena::services

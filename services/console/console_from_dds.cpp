@@ -45,7 +45,8 @@ Eigen::Vector2d FromDds(const pena_dds::Point2& point) { return {point.x_m(), po
 
 }  // namespace
 
-PoseUpdate ToPicture(const pena_dds::EntityPose& sample, std::int64_t heard_ns) {
+PoseUpdate ToPicture(const pena_dds::EntityPose& sample, std::int64_t heard_ns,
+                     std::int64_t source_ns) {
   CheckSchemaVersion(sample.schema_version(), "EntityPose");
   PoseUpdate pose;
   pose.entity_id = sample.entity_id().to_string();
@@ -55,6 +56,7 @@ PoseUpdate ToPicture(const pena_dds::EntityPose& sample, std::int64_t heard_ns) 
   for (std::size_t i = 0; i < 9; ++i) pose.covariance[i] = sample.covariance()[i];
   pose.status = ToString(sample.status());
   pose.heard_ns = heard_ns;
+  pose.source_ns = source_ns;
   return pose;
 }
 

@@ -68,6 +68,7 @@ void ConsolePicture::OnPose(const PoseUpdate& pose) {
   }
   entity.pose = pose;
   entity.dirty = true;
+  latest_stamp_s_ = std::max(latest_stamp_s_, pose.stamp_s);
   const geometry::Pose2& p = pose.world_from_body;
   if (!entity.trail.empty()) {
     const geometry::Pose2& last = entity.trail.back().pose;
@@ -160,7 +161,11 @@ nlohmann::json ConsolePicture::EntityJson(const std::string& id, const Entity& e
                    {"y", p.world_from_body.y_m},
                    {"theta", p.world_from_body.theta_rad},
                    {"cov", json::array({p.covariance[0], p.covariance[1], p.covariance[4]})},
-                   {"status", p.status}};
+                   {"status", p.status},
+                   // Writer's clock, ms (fractional): a browser on this machine measures the
+                   // pose's age when it arrives.
+                   {"src_ms", static_cast<double>(p.source_ns) * 1e-6},
+                   {"rx_ms", static_cast<double>(p.heard_ns) * 1e-6}};
   }
   out["heard_ms"] = Ms(heard_ns);
   if (whole_trail) {
@@ -249,6 +254,11 @@ std::optional<nlohmann::json> ConsolePicture::TakeDelta(std::int64_t now_ns) {
   }
   if (!any) return std::nullopt;
   return out;
+}
+
+const AnnotationRecord* ConsolePicture::FindAnnotation(const std::string& annotation_id) const {
+  const auto it = annotations_.find(annotation_id);
+  return it == annotations_.end() ? nullptr : &it->second;
 }
 
 std::optional<ConsolePicture::Nearest> ConsolePicture::NearestTrailPose(

@@ -34,6 +34,7 @@ struct PoseUpdate {
   double covariance[9] = {};             // of world_from_body, row-major (x, y, theta)
   std::string status;                    // "first", "matched", "degenerate", "failed", ...
   std::int64_t heard_ns = 0;             // this machine's clock at reception
+  std::int64_t source_ns = 0;            // the writer's clock when it was written (0: unknown)
 };
 
 // One entity's heartbeat (from pena_dds::EntityStatus).
@@ -98,6 +99,10 @@ class ConsolePicture {
   std::optional<Nearest> NearestTrailPose(const std::string& entity_id,
                                           const Eigen::Vector2d& point_m) const;
   bool HasEntity(const std::string& entity_id) const { return entities_.count(entity_id) > 0; }
+  // The annotation with that id, or nullptr.
+  const AnnotationRecord* FindAnnotation(const std::string& annotation_id) const;
+  // The latest mission time any entity's pose carried (0 before the first pose).
+  double latest_stamp_s() const { return latest_stamp_s_; }
   std::uint64_t map_version() const { return map_.version(); }
   std::size_t entity_count() const { return entities_.size(); }
 
@@ -117,6 +122,7 @@ class ConsolePicture {
   void ApplyEarly();
 
   PictureOptions options_;
+  double latest_stamp_s_ = 0.0;
   std::map<std::string, Entity> entities_;
   line_map::LineMap map_;
   std::map<std::uint64_t, line_map::MapDelta> early_;  // by from_version

@@ -55,7 +55,11 @@ ConsoleService::ConsoleService(ConsoleOptions options)
       picture_(options_.picture),
       participant_(options_.dds, "pena-console"),
       correction_writer_(participant_, topics::kOperatorCorrection),
-      pose_reader_(participant_, topics::kPose, Enqueue<pena_dds::EntityPosePubSubType>()),
+      annotation_writer_(participant_, topics::kAnnotation),
+      pose_reader_(participant_, topics::kPose,
+                   [this](pena_dds::EntityPose&& sample, const SampleMeta& meta) {
+                     inbox_.Push(Event(PoseEvent{std::move(sample), meta}));
+                   }),
       status_reader_(participant_, topics::kStatus, Enqueue<pena_dds::EntityStatusPubSubType>()),
       delta_reader_(participant_, topics::kGlobalMapDelta,
                     Enqueue<pena_dds::GlobalMapDeltaPubSubType>()),
@@ -116,9 +120,9 @@ void ConsoleService::Flush() {
   }
 }
 
-void ConsoleService::Handle(const pena_dds::EntityPose& sample) {
+void ConsoleService::Handle(const PoseEvent& pose) {
   ++summary_.samples;
-  picture_.OnPose(ToPicture(sample, NowNs()));
+  picture_.OnPose(ToPicture(pose.sample, pose.meta.reception_time_ns, pose.meta.source_time_ns));
 }
 
 void ConsoleService::Handle(const pena_dds::EntityStatus& sample) {
@@ -174,16 +178,30 @@ void ConsoleService::Handle(const BrowserMessage& message) {
   ++summary_.requests;
   const BrowserRequest request = ParseBrowserRequest(message.text);
   if (!request.ok()) {
-    ++summary_.refused;
-    spdlog::warn("browser {}: request refused: {}", message.session, request.error());
-    Reply(message.session, request.req, "error", request.error());
+    Refuse(message.session, request.req, request.error());
     return;
   }
-  if (std::holds_alternative<PingRequest>(request.command())) {
-    Reply(message.session, request.req, "pong", "");
-    return;
-  }
-  const auto& rotate = std::get<RotateRequest>(request.command());
+  std::visit(
+      [&](const auto& command) {
+        using T = std::decay_t<decltype(command)>;
+        if constexpr (std::is_same_v<T, PingRequest>) {
+          Reply(message.session, request.req, "pong", "");
+        } else if constexpr (std::is_same_v<T, RotateRequest>) {
+          Rotate(message.session, request.req, command);
+        } else if constexpr (std::is_same_v<T, AnnotateRequest>) {
+          Annotate(message.session, request.req, command);
+        } else {
+          Retract(message.session, request.req, command);
+        }
+      },
+      request.command());
+}
+
+std::string ConsoleService::NextId() {
+  return options_.operator_id + "/" + run_id_ + "-" + std::to_string(next_seq_++);
+}
+
+void ConsoleService::Rotate(std::uint64_t session, std::int64_t req, const RotateRequest& rotate) {
   const std::string who = "rotate " + rotate.entity_id;
   std::string problem;
   const auto nearest = picture_.NearestTrailPose(rotate.entity_id, rotate.origin_m);
@@ -200,19 +218,15 @@ void ConsoleService::Handle(const BrowserMessage& message) {
                     "origin";
   }
   if (!problem.empty()) {
-    ++summary_.refused;
-    spdlog::warn("browser {}: request refused: {}", message.session, problem);
-    Reply(message.session, request.req, "error", problem);
+    Refuse(session, req, problem);
     return;
   }
-  const std::uint64_t seq = next_seq_++;
-  const std::string correction_id = options_.operator_id + "/" + run_id_ + "-" +
-                                    std::to_string(seq);
+  const std::uint64_t seq = next_seq_;
+  const std::string correction_id = NextId();
   pena_dds::OperatorCorrection sample =
       ToDdsRotation(rotate, nearest->stamp_s, options_.operator_id, correction_id, seq);
   if (!correction_writer_.Write(sample)) {
-    ++summary_.refused;
-    Reply(message.session, request.req, "error", who + ": DDS refused the correction");
+    Refuse(session, req, who + ": DDS refused the correction");
     return;
   }
   ++summary_.corrections_sent;
@@ -223,10 +237,61 @@ void ConsoleService::Handle(const BrowserMessage& message) {
   spdlog::info("{} sent {}: rotate {} by {:.2f} deg about ({:.2f}, {:.2f}) from {:.2f} s",
                options_.operator_id, correction_id, rotate.entity_id, angle_deg,
                rotate.origin_m.x(), rotate.origin_m.y(), nearest->stamp_s);
-  Reply(message.session, request.req, "ack",
+  Reply(session, req, "ack",
         "rotation of " + rotate.entity_id + " by " + Num(angle_deg) + " deg from " +
             Num(nearest->stamp_s) + " s sent",
         correction_id);
+}
+
+void ConsoleService::Annotate(std::uint64_t session, std::int64_t req,
+                              const AnnotateRequest& annotate) {
+  AnnotationRecord record;
+  record.annotation_id = NextId();
+  record.author_id = options_.operator_id;
+  record.kind = annotate.kind;
+  record.stamp_s = picture_.latest_stamp_s();  // mission time as far as the console knows it
+  record.x_m = annotate.position_m.x();
+  record.y_m = annotate.position_m.y();
+  record.radius_m = annotate.radius_m;
+  record.text = annotate.text;
+  Publish(session, req, record, "marked " + annotate.kind + " at " + Num(record.x_m) + ", " +
+                                    Num(record.y_m));
+}
+
+void ConsoleService::Retract(std::uint64_t session, std::int64_t req,
+                             const RetractRequest& retract) {
+  const AnnotationRecord* known = picture_.FindAnnotation(retract.annotation_id);
+  if (known == nullptr || known->retracted) {
+    Refuse(session, req, "retract.id: no mark '" + retract.annotation_id + "' to retract");
+    return;
+  }
+  AnnotationRecord record = *known;
+  record.retracted = true;
+  Publish(session, req, record, "retracted " + record.kind + " " + record.annotation_id);
+}
+
+void ConsoleService::Publish(std::uint64_t session, std::int64_t req,
+                             const AnnotationRecord& record, const std::string& done) {
+  pena_dds::Annotation sample;
+  try {
+    sample = ToDdsAnnotation(record);
+  } catch (const std::exception& error) {
+    Refuse(session, req, error.what());
+    return;
+  }
+  if (!annotation_writer_.Write(sample)) {
+    Refuse(session, req, "DDS refused the annotation");
+    return;
+  }
+  ++summary_.annotations_sent;
+  spdlog::info("{} sent {}: {}", options_.operator_id, record.annotation_id, done);
+  Reply(session, req, "ack", done, record.annotation_id);
+}
+
+void ConsoleService::Refuse(std::uint64_t session, std::int64_t req, const std::string& problem) {
+  ++summary_.refused;
+  spdlog::warn("browser {}: request refused: {}", session, problem);
+  Reply(session, req, "error", problem);
 }
 
 }  // namespace pena::services

@@ -1,11 +1,11 @@
 #pragma once
 // pena-console: the command post's live view in a browser (docs/console.md). A thin DDS adapter:
 // the constructor creates the participant, readers of poses, statuses, the global map,
-// annotations and operator corrections, and the operator-correction writer, then the web server
-// (web_server.hpp). Listener and web callbacks only enqueue; Run() is the one worker that owns
-// the picture (console_picture.hpp): it applies samples, answers browsers (a snapshot when they
-// connect, deltas every tick) and turns the operator's validated gestures into
-// pena_dds::OperatorCorrection samples.
+// annotations and operator corrections, the operator-correction and annotation writers, then
+// the web server (web_server.hpp). Listener and web callbacks only enqueue; Run() is the one
+// worker that owns the picture (console_picture.hpp): it applies samples, answers browsers (a
+// snapshot when they connect, deltas every tick) and turns the operator's validated gestures
+// into pena_dds::OperatorCorrection and pena_dds::Annotation samples.
 
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +13,7 @@
 #include <string>
 #include <variant>
 
+#include "browser_request.hpp"
 #include "console_picture.hpp"
 #include "dds_endpoints.hpp"
 #include "dds_participant.hpp"
@@ -47,6 +48,7 @@ struct ConsoleSummary {
   long requests = 0;
   long refused = 0;
   long corrections_sent = 0;
+  long annotations_sent = 0;
   long deltas_sent = 0;
 };
 
@@ -74,14 +76,18 @@ class ConsoleService {
   struct BrowserClose {
     std::uint64_t session;
   };
-  using Event = std::variant<pena_dds::EntityPose, pena_dds::EntityStatus, pena_dds::GlobalMapDelta,
+  struct PoseEvent {
+    pena_dds::EntityPose sample;
+    SampleMeta meta;
+  };
+  using Event = std::variant<PoseEvent, pena_dds::EntityStatus, pena_dds::GlobalMapDelta,
                              pena_dds::GlobalMapSnapshot, pena_dds::Annotation,
                              pena_dds::OperatorCorrection, BrowserOpen, BrowserMessage,
                              BrowserClose>;
   template <class PubSubType>
   typename Reader<PubSubType>::SampleCallback Enqueue();
 
-  void Handle(const pena_dds::EntityPose& sample);
+  void Handle(const PoseEvent& pose);
   void Handle(const pena_dds::EntityStatus& sample);
   void Handle(const pena_dds::GlobalMapDelta& sample);
   void Handle(const pena_dds::GlobalMapSnapshot& sample);
@@ -90,6 +96,16 @@ class ConsoleService {
   void Handle(const BrowserOpen& open);
   void Handle(const BrowserMessage& message);
   void Handle(const BrowserClose& close);
+  void Rotate(std::uint64_t session, std::int64_t req, const RotateRequest& rotate);
+  void Annotate(std::uint64_t session, std::int64_t req, const AnnotateRequest& annotate);
+  void Retract(std::uint64_t session, std::int64_t req, const RetractRequest& retract);
+  // Publishes a new or changed annotation and answers the browser.
+  void Publish(std::uint64_t session, std::int64_t req, const AnnotationRecord& record,
+               const std::string& done);
+  // Answers an error; nothing was applied.
+  void Refuse(std::uint64_t session, std::int64_t req, const std::string& problem);
+  // "<operator>/<run>-<n>": unique across runs (the operator topics are durable).
+  std::string NextId();
   void Flush();
   // Answers a browser's request: an error names what was wrong, nothing is applied.
   void Reply(std::uint64_t session, std::int64_t req, const std::string& type,
@@ -99,10 +115,12 @@ class ConsoleService {
   ConsolePicture picture_;
   ConsoleSummary summary_;
   std::uint64_t next_seq_ = 1;
-  std::string run_id_;  // wall seconds at start: this run's correction ids differ from earlier ones'
+  // Wall seconds at start: this run's ids differ from an earlier run's.
+  std::string run_id_;
   WorkQueue<Event> inbox_;
   Participant participant_;
   Writer<pena_dds::OperatorCorrectionPubSubType> correction_writer_;
+  Writer<pena_dds::AnnotationPubSubType> annotation_writer_;
   Reader<pena_dds::EntityPosePubSubType> pose_reader_;
   Reader<pena_dds::EntityStatusPubSubType> status_reader_;
   Reader<pena_dds::GlobalMapDeltaPubSubType> delta_reader_;

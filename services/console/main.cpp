@@ -1,6 +1,7 @@
 // pena-console: the command post's live view of a PeNa DDS domain in a browser
 // (docs/console.md). Serves one page on 127.0.0.1:8090 by default; the operator's three-point
-// rotations go out as pena_dds::OperatorCorrection. Runs until SIGINT/SIGTERM (or --duration).
+// rotations go out as pena_dds::OperatorCorrection, marks as pena_dds::Annotation. Runs until
+// SIGINT/SIGTERM (or --duration).
 // Exits 0 on success, 1 on bad options, 2 on a DDS failure.
 #include <spdlog/spdlog.h>
 
@@ -19,7 +20,8 @@ int main(int argc, char** argv) {
   app.add_option("--bind", o.web.bind_address, "Address to listen on (default 127.0.0.1)");
   app.add_option("--port", o.web.port, "TCP port (default 8090; 0: any free port)");
   app.add_option("--port-file", o.port_file, "Write the port listened on to this file");
-  app.add_option("--operator-id", o.operator_id, "Author of this console's corrections");
+  app.add_option("--operator-id", o.operator_id,
+                 "Author of this console's corrections and marks");
   app.add_option("--stale-after", o.picture.stale_after_s,
                  "Wall seconds without a pose before an entity shows as stale");
   app.add_option("--trail-points", o.picture.trail_points, "Trail points kept per entity");

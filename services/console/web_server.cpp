@@ -211,7 +211,9 @@ WebServer::WebServer(const WebServerOptions& options, WebServerCallbacks callbac
   const std::string where = options.bind_address + ":" + std::to_string(options.port);
   beast::error_code error;
   const asio::ip::address address = asio::ip::make_address(options.bind_address, error);
-  if (error) throw std::runtime_error("bind address " + options.bind_address + ": " + error.message());
+  if (error) {
+    throw std::runtime_error("bind address " + options.bind_address + ": " + error.message());
+  }
   const tcp::endpoint endpoint(address, options.port);
   impl_->acceptor.open(endpoint.protocol(), error);
   if (!error) impl_->acceptor.set_option(asio::socket_base::reuse_address(true), error);

@@ -8,8 +8,8 @@ namespace pena::services {
 namespace {
 
 TEST(BrowserRequest, ParsesAThreePointRotation) {
-  const BrowserRequest r = ParseBrowserRequest(
-      R"({"type":"rotate","req":7,"entity":"ff1","origin":[1,2],"wrong":[3.5,2],"correct":[1,4.5]})");
+  const BrowserRequest r = ParseBrowserRequest(R"({"type":"rotate","req":7,"entity":"ff1",)"
+                                               R"("origin":[1,2],"wrong":[3.5,2],"correct":[1,4.5]})");
   ASSERT_TRUE(r.ok()) << r.error();
   EXPECT_EQ(r.req, 7);
   const auto& rotate = std::get<RotateRequest>(r.command());
@@ -17,6 +17,20 @@ TEST(BrowserRequest, ParsesAThreePointRotation) {
   EXPECT_DOUBLE_EQ(rotate.origin_m.y(), 2.0);
   EXPECT_DOUBLE_EQ(rotate.wrong_m.x(), 3.5);
   EXPECT_DOUBLE_EQ(rotate.correct_m.y(), 4.5);
+}
+
+TEST(BrowserRequest, ParsesAMarkAndItsRetraction) {
+  const BrowserRequest mark = ParseBrowserRequest(
+      R"({"type":"annotate","kind":"victim_found","position":[4.5,-2],"text":"two people"})");
+  ASSERT_TRUE(mark.ok()) << mark.error();
+  const auto& a = std::get<AnnotateRequest>(mark.command());
+  EXPECT_EQ(a.kind, "victim_found");
+  EXPECT_DOUBLE_EQ(a.position_m.x(), 4.5);
+  EXPECT_EQ(a.text, "two people");
+  EXPECT_DOUBLE_EQ(a.radius_m, 0.0);
+  const BrowserRequest retract = ParseBrowserRequest(R"({"type":"retract","id":"op/1-3"})");
+  ASSERT_TRUE(retract.ok()) << retract.error();
+  EXPECT_EQ(std::get<RetractRequest>(retract.command()).annotation_id, "op/1-3");
 }
 
 // Each hostile message is refused with an error that names what was wrong.
@@ -56,7 +70,16 @@ INSTANTIATE_TEST_SUITE_P(
         Hostile{R"({"type":"rotate","entity":"ff1","origin":[1,2],"wrong":[3,4],"correct":[5,2e5]})",
                 "within"},
         Hostile{"{\"type\":\"ping\",\"pad\":\"" + std::string(5000, 'x') + "\"}",
-                "larger than 4096"}));
+                "larger than 4096"},
+        Hostile{R"({"type":"annotate","kind":"bomb","position":[1,2]})", "annotate.kind: unknown"},
+        Hostile{R"({"type":"annotate","kind":"exit","position":[1,2],"radius_m":-1})",
+                "annotate.radius_m"},
+        Hostile{R"({"type":"annotate","kind":"exit","position":[1,2],"text":7})",
+                "annotate.text: not a string"},
+        Hostile{"{\"type\":\"annotate\",\"kind\":\"exit\",\"position\":[1,2],\"text\":\"" +
+                    std::string(300, 'y') + "\"}",
+                "annotate.text: at most 255"},
+        Hostile{R"({"type":"retract"})", "retract.id: missing"}));
 
 }  // namespace
 }  // namespace pena::services

@@ -4,14 +4,17 @@
 //      poses are near the mission's ground truth;
 //   2. hostile messages over the WebSocket are refused with an error and change nothing, and the
 //      page shows the operator the error;
-//   3. a second page, and the same page reloaded, hold the same picture as the first;
+//   3. a second page, and the same page reloaded, hold the same picture as the first; (--url2) a
+//      victim marked on the page reaches a second pena-console over DDS, and so does its
+//      retraction;
 //   4. (--rotate ENTITY) the three-point rotation: the test corrupts the entity's heading by
 //      20 deg through the console, then clicks the three points on the page (origin, the wrong
 //      direction, the correct direction); the entity's published poses must come back within
 //      0.3 m of the truth.
 // Prints figures; exits 1 with the reason on the first failed check.
 //
-//   node console_browser_test.js --url URL --out DIR --mission DIR [--entities 4] [--rotate ff2]
+//   node console_browser_test.js --url URL --out DIR --mission DIR [--entities 4] [--url2 URL]
+//                                [--rotate ff2]
 'use strict';
 
 const fs = require('fs');
@@ -205,6 +208,7 @@ async function run(browser, o) {
   await other.reload({ waitUntil: 'load' });
   await samePicture(page, other, 'the reloaded page');
   await other.close();
+  if (o.url2) await annotation(browser, page, o);
 
   // ---- 4. the three-point rotation ----
   if (o.rotate) await rotation(page, o, truth[o.rotate]);
@@ -237,6 +241,48 @@ async function samePicture(a, b, what) {
     }
     await sleep(100);
   }
+}
+
+// A victim marked by clicks on the first console's page shows on the second console's page;
+// the retraction too.
+async function annotation(browser, page, o) {
+  const e = Object.values(await poses(page))[0];
+  const target = [e.x + 0.5, e.y + 0.5];
+  await page.select('#mark-kind', 'victim_found');
+  await page.type('#mark-text', 'two people, test');
+  const acks = await page.evaluate(() => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length);
+  await page.click('#mark');
+  await click(page, target[0], target[1]);
+  await waitFor(page, (n) => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length > n,
+                acks, 5000, 'no answer to the mark');
+  const second = await browser.newPage();
+  await second.goto(o.url2, { waitUntil: 'load' });
+  const seen = () => second.evaluate(() => [...window.penaConsole.state.annotations.values()]
+      .filter((a) => a.kind === 'victim_found' && a.text === 'two people, test'));
+  const until = Date.now() + 15000;
+  let marks = [];
+  while (Date.now() < until && (marks = await seen()).length === 0) await sleep(100);
+  if (marks.length !== 1) fail(`the second console shows ${marks.length} victim marks (expected 1)`);
+  const m = marks[0];
+  const scale = await page.evaluate(() => window.penaConsole.view.scale);
+  const offPx = Math.hypot(m.x - target[0], m.y - target[1]) * scale;
+  console.log(`victim marked at (${m.x.toFixed(2)}, ${m.y.toFixed(2)}) by ${m.author}: on the second console, ` +
+              `${offPx.toFixed(1)} px from the click`);
+  if (offPx > 2) fail(`the mark is ${offPx.toFixed(1)} px from where it was clicked`);
+  if (m.retracted) fail('the mark arrived retracted');
+  await page.bringToFront();  // a background tab gets no animation frames, which clicks wait for
+  const button = `#annotations li[data-annotation="${m.id}"] button.retract`;
+  await page.waitForSelector(button, { timeout: 5000 });
+  await page.click(button);
+  while (Date.now() < until + 10000 && !(await second.evaluate((id) => {
+    const a = window.penaConsole.state.annotations.get(id);
+    return a && a.retracted;
+  }, m.id))) await sleep(100);
+  const retracted = await second.evaluate((id) => window.penaConsole.state.annotations.get(id).retracted, m.id);
+  if (!retracted) fail('the retraction did not reach the second console');
+  console.log('retracted on the first console: retracted on the second');
+  await second.close();
+  await page.bringToFront();
 }
 
 // Clicks a map point (metres) on the canvas.

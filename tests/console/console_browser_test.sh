@@ -45,9 +45,15 @@ DOMAIN=${DOMAIN:?no free DDS domain in 30..99}
   --profiles-file "$REPO/deploy/dds/pena-loopback.xml" --profiles-file "$REPO/deploy/dds/pena-qos.xml" \
   --operator-id test > "$OUT/console.log" 2>&1 &
 PIDS+=("$!")
-for _ in $(seq 100); do [[ -s $OUT/console.port ]] && break; sleep 0.1; done
+# A second console on the same domain (another operator's command post).
+"$BUILD/services/console/pena-console" --port 0 --port-file "$OUT/console2.port" --domain "$DOMAIN" \
+  --profiles-file "$REPO/deploy/dds/pena-loopback.xml" --profiles-file "$REPO/deploy/dds/pena-qos.xml" \
+  --operator-id second > "$OUT/console2.log" 2>&1 &
+PIDS+=("$!")
+for _ in $(seq 100); do [[ -s $OUT/console.port && -s $OUT/console2.port ]] && break; sleep 0.1; done
 PORT=$(cat "$OUT/console.port")
-echo "pena-console on http://127.0.0.1:$PORT/ (DDS domain $DOMAIN)"
+PORT2=$(cat "$OUT/console2.port")
+echo "pena-console on http://127.0.0.1:$PORT/ and http://127.0.0.1:$PORT2/ (DDS domain $DOMAIN)"
 
 # The team at 2x real time: the browser's checks need the mission to last about a minute.
 # The domain's lock is held here; run-team.sh is told the domain.
@@ -58,7 +64,8 @@ TEAM=$!
 PIDS+=("$TEAM")
 
 status=0
-node "$HERE/console_browser_test.js" --url "http://127.0.0.1:$PORT/" --out "$OUT" \
+node "$HERE/console_browser_test.js" --url "http://127.0.0.1:$PORT/" --url2 "http://127.0.0.1:$PORT2/" \
+  --out "$OUT" \
   --mission "$OUT/mission" --entities 4 --chromium "$CHROMIUM" \
   ${PENA_CONSOLE_TEST_ROTATE:+--rotate "$PENA_CONSOLE_TEST_ROTATE"} 2>&1 | tee "$OUT/browser.log" ||
   status=$?

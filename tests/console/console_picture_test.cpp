@@ -9,7 +9,8 @@ namespace {
 
 constexpr std::int64_t kSecond = 1'000'000'000;
 
-PoseUpdate Pose(const std::string& id, std::uint64_t seq, double x, double y, std::int64_t heard_ns) {
+PoseUpdate Pose(const std::string& id, std::uint64_t seq, double x, double y,
+                std::int64_t heard_ns) {
   PoseUpdate p;
   p.entity_id = id;
   p.seq = seq;

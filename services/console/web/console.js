@@ -19,9 +19,11 @@ const state = {
   messages: [],            // {kind: 'error' | 'ack' | 'info', text}
   snapshots: 0,
   deltas: 0,
+  poseAgesMs: [],          // per new pose in a delta: this browser's clock at arrival - writer's
+  poseDdsAgesMs: [],       // the same poses: the console's reception - writer's
 };
 const view = { cx: 0, cy: 0, scale: 20, fitted: false, follow: '' };
-const pick = { active: false, entity: '', points: [] };  // the rotation being clicked
+const pick = { active: false, mode: 'rotate', entity: '', points: [] };  // the gesture being clicked
 let socket = null;
 let nextReq = 1;
 let dirty = true;
@@ -72,7 +74,16 @@ function receive(m) {
     state.snapshots++;
     if (!view.fitted) fit();
   } else if (m.type === 'delta') {
-    for (const e of m.entities || []) upsertEntity(e);
+    const arrivedMs = performance.timeOrigin + performance.now();
+    for (const e of m.entities || []) {
+      const known = state.entities.get(e.id);
+      if (e.pose && e.pose.src_ms > 0 && (!known || !known.pose || known.pose.seq !== e.pose.seq)) {
+        state.poseAgesMs.push(arrivedMs - e.pose.src_ms);
+        state.poseDdsAgesMs.push(e.pose.rx_ms - e.pose.src_ms);
+        if (state.poseAgesMs.length > 200000) { state.poseAgesMs.shift(); state.poseDdsAgesMs.shift(); }
+      }
+      upsertEntity(e);
+    }
     if (m.map) {
       state.mapVersion = m.map.version;
       for (const s of m.map.upsert) state.segments.set(s[0], s.slice(1));
@@ -88,7 +99,8 @@ function receive(m) {
     note('ack', m.message);
   }
   dirty = true;
-  renderPanel();
+  // The side panel follows every 500 ms; at once only for what the operator waits for.
+  if (m.type !== 'delta' || m.annotations || m.corrections) renderPanel();
 }
 
 function upsertEntity(e) {
@@ -169,9 +181,22 @@ const PICK_PROMPTS = ['click the rotation origin on the trail of ', 'click a poi
 function startRotation(entity) {
   if (!state.entities.has(entity)) { note('error', `rotate: unknown entity '${entity}'`); return; }
   pick.active = true;
+  pick.mode = 'rotate';
   pick.entity = entity;
   pick.points = [];
   showPrompt();
+}
+
+// The next click on the map places a mark of the chosen kind.
+function startMark() {
+  pick.active = true;
+  pick.mode = 'mark';
+  pick.points = [];
+  showPrompt();
+}
+
+function retract(id) {
+  send({ type: 'retract', id });
 }
 
 function cancelRotation() {
@@ -184,7 +209,11 @@ function cancelRotation() {
 function pickPoint(x, y) {
   if (!pick.active) return;
   pick.points.push([x, y]);
-  if (pick.points.length === 3) {
+  if (pick.mode === 'mark') {
+    const text = document.getElementById('mark-text').value;
+    send({ type: 'annotate', kind: document.getElementById('mark-kind').value, position: [x, y], text });
+    cancelRotation();
+  } else if (pick.points.length === 3) {
     const [origin, wrong, correct] = pick.points;
     send({ type: 'rotate', entity: pick.entity, origin, wrong, correct });
     cancelRotation();
@@ -203,10 +232,14 @@ window.addEventListener('keydown', (ev) => { if (ev.key === 'Escape') cancelRota
 
 function showPrompt() {
   const p = document.getElementById('prompt');
-  const button = document.getElementById('rotate');
-  button.classList.toggle('active', pick.active);
+  document.getElementById('rotate').classList.toggle('active', pick.active && pick.mode === 'rotate');
+  document.getElementById('mark').classList.toggle('active', pick.active && pick.mode === 'mark');
   canvas.classList.toggle('picking', pick.active);
   if (!pick.active) { p.textContent = ''; return; }
+  if (pick.mode === 'mark') {
+    p.textContent = `Mark ${document.getElementById('mark-kind').value}: click the map (Esc cancels)`;
+    return;
+  }
   const n = pick.points.length;
   p.textContent = `Rotate ${pick.entity}: ${PICK_PROMPTS[n]}${n === 0 ? pick.entity : ''} (Esc cancels)`;
 }
@@ -214,6 +247,10 @@ function showPrompt() {
 document.getElementById('rotate').addEventListener('click', () => {
   if (pick.active) { cancelRotation(); return; }
   startRotation(document.getElementById('rotate-entity').value);
+});
+document.getElementById('mark').addEventListener('click', () => {
+  if (pick.active) { cancelRotation(); return; }
+  startMark();
 });
 document.getElementById('fit').addEventListener('click', fit);
 document.getElementById('follow').addEventListener('change', (ev) => { view.follow = ev.target.value; dirty = true; });
@@ -457,9 +494,29 @@ function renderPanel() {
     const angle = c.transform ? ` ${(c.transform[2] * 180 / Math.PI).toFixed(1)} deg` : '';
     return `${c.kind}${angle} of ${c.entity} from ${c.stamp_s.toFixed(1)} s by ${c.operator}`;
   });
-  list('annotations', [...state.annotations.values()].filter((a) => !a.retracted),
-       (a) => `${a.kind}${a.text ? ': ' + a.text : ''} at ${a.x.toFixed(1)}, ${a.y.toFixed(1)} (${a.author})`);
+  // Rebuilt only when the marks change: a button must stay put while the operator clicks it.
+  const marks = document.getElementById('annotations');
+  const shown = [...state.annotations.values()].filter((m) => !m.retracted);
+  const key = JSON.stringify(shown.map((a) => [a.id, a.kind, a.text, a.x, a.y]));
+  if (marks.dataset.key !== key) {
+    marks.dataset.key = key;
+    marks.innerHTML = '';
+    for (const a of shown) marks.appendChild(markItem(a));
+  }
   list('messages', state.messages.slice().reverse(), (m) => m.text, (m) => m.kind);
+}
+
+// One mark in the side list, with its retract button.
+function markItem(a) {
+  const li = document.createElement('li');
+  li.dataset.annotation = a.id;
+  li.textContent = `${a.kind}${a.text ? ': ' + a.text : ''} at ${a.x.toFixed(1)}, ${a.y.toFixed(1)} (${a.author}) `;
+  const button = document.createElement('button');
+  button.textContent = 'retract';
+  button.className = 'retract';
+  button.addEventListener('click', () => retract(a.id));
+  li.appendChild(button);
+  return li;
 }
 
 function showLink() {
@@ -477,7 +534,7 @@ function frame() {
 setInterval(() => { renderPanel(); dirty = true; }, 500);
 window.addEventListener('resize', resize);
 
-window.penaConsole = { state, view, pick, send, toScreen, toWorld, startRotation, pickPoint, fit,
+window.penaConsole = { state, view, pick, send, toScreen, toWorld, startRotation, startMark, retract, pickPoint, fit,
                        ellipseOf, redraw: () => { draw(); dirty = false; } };
 resize();
 connect();
