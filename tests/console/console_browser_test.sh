@@ -59,6 +59,7 @@ echo "pena-console on http://127.0.0.1:$PORT/ and http://127.0.0.1:$PORT2/ (DDS 
 # The domain's lock is held here; run-team.sh is told the domain.
 PENA_BUILD=$BUILD PENA_DEMO_MISSION=$OUT/mission PENA_DDS_DOMAIN=$DOMAIN \
   PENA_DEMO_RATE=${PENA_CONSOLE_TEST_RATE:-2} PENA_FUSION_ARGS=${PENA_CONSOLE_TEST_FUSION_ARGS:-} \
+  PENA_DEMO_CONSOLE=0 \
   bash "$REPO/deploy/demo/run-team.sh" "$OUT/run" > "$OUT/team.log" 2>&1 &
 TEAM=$!
 PIDS+=("$TEAM")
