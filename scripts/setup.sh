@@ -2,7 +2,10 @@
 # Installs PeNa's Debian 12 build dependencies (only those missing) and builds into build/.
 # Idempotent: a second run installs nothing and rebuilds only what changed.
 # Environment: PENA_BUILD_DIR (default build), PENA_WERROR (ON in CI), PENA_JOBS (default nproc),
-# PENA_TARGETS (default: everything; the demo builds only what it runs). Uses ccache if present.
+# PENA_TARGETS (default: everything; the demo builds only what it runs), PENA_BROWSER_TESTS (default
+# 1: also install Debian's chromium, node and the browser test's npm packages in
+# tests/console/node_modules; 0: skip them, the browser test then reports itself skipped). Uses
+# ccache if present.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -12,7 +15,15 @@ packages=(
   libprotobuf-dev protobuf-compiler libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libnanoflann-dev zlib1g-dev libsodium-dev
   libfastrtps-dev fastddsgen
+  libboost-dev nlohmann-json3-dev
 )
+
+# The console's browser test (tests/console): Debian's chromium (large, so only when wanted) and
+# node for puppeteer-core.
+if [[ ${PENA_BROWSER_TESTS:-1} == 1 ]]; then
+  packages+=(chromium)
+  command -v node >/dev/null 2>&1 || packages+=(nodejs npm)
+fi
 
 missing=()
 for package in "${packages[@]}"; do
@@ -29,6 +40,12 @@ if ((${#missing[@]})); then
   export DEBIAN_FRONTEND=noninteractive
   apt-get update -qq
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# puppeteer-core at the version package-lock.json pins, into tests/console/node_modules.
+if [[ ${PENA_BROWSER_TESTS:-1} == 1 && ! -d tests/console/node_modules/puppeteer-core ]]; then
+  echo "setup: npm ci in tests/console (puppeteer-core for the browser test)"
+  (cd tests/console && PUPPETEER_SKIP_DOWNLOAD=1 npm ci --no-audit --no-fund >/dev/null)
 fi
 
 build_dir=${PENA_BUILD_DIR:-build}

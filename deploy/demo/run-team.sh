@@ -14,7 +14,9 @@
 # deployment; off by itself with --no-corrections, where there is no answer to wait for),
 # PENA_DEMO_CORRECTION_INTERVAL (2.4: mission seconds between correction attempts per entity),
 # PENA_ENTITY_CONFIG (an EntityConfig file every pena-entity reads first; its command line wins,
-# e.g. `pipeline { spread_strides: true }`, docs/services.md).
+# e.g. `pipeline { spread_strides: true }`, docs/services.md), PENA_DEMO_CONSOLE (1: serve
+# pena-console, if built, while the team runs, and write OUT/console.png, a headless chromium's
+# screenshot of it at the end; 0: no console), PENA_DEMO_CONSOLE_PORT (8090; on 127.0.0.1).
 # Every process started here is stopped on exit (normal, error, Ctrl-C); nothing is left running.
 set -euo pipefail
 
@@ -112,6 +114,23 @@ echo "== pena-fusion (DDS domain $DOMAIN, loopback only$( ((LOCKSTEP)) && echo "
 FUSION_PID=$!
 PIDS+=("$FUSION_PID")
 
+CONSOLE_BIN=$BUILD/services/console/pena-console
+CONSOLE_URL=""
+if [[ ${PENA_DEMO_CONSOLE:-1} == 1 && -x $CONSOLE_BIN ]]; then
+  rm -f "$OUT/logs/console.port"
+  "$CONSOLE_BIN" --port "${PENA_DEMO_CONSOLE_PORT:-8090}" --port-file "$OUT/logs/console.port" \
+    --domain "$DOMAIN" --profiles-file "$DDS_DIR/pena-loopback.xml" \
+    --profiles-file "$DDS_DIR/pena-qos.xml" > "$OUT/logs/console.log" 2>&1 &
+  PIDS+=("$!")
+  for _ in $(seq 50); do [[ -s $OUT/logs/console.port ]] && break; sleep 0.1; done
+  if [[ -s $OUT/logs/console.port ]]; then
+    CONSOLE_URL="http://127.0.0.1:$(cat "$OUT/logs/console.port")/"
+    echo "== pena-console: open $CONSOLE_URL to watch the team (docs/console.md)"
+  else
+    echo "run-team.sh: pena-console did not start (see $OUT/logs/console.log); going on without it"
+  fi
+fi
+
 ENTITY_PIDS=()
 ENTITIES=()
 for dir in "$MISSION"/*/; do
@@ -136,6 +155,15 @@ for i in "${!ENTITY_PIDS[@]}"; do
 done
 # Let the fusion take the last deltas and snapshots, then stop it cleanly (it writes its outputs).
 sleep 2
+SHOT=$REPO/tests/console/console_shot.js
+if [[ -n $CONSOLE_URL && -d $REPO/tests/console/node_modules/puppeteer-core ]] &&
+  command -v chromium >/dev/null && command -v node >/dev/null; then
+  if node "$SHOT" --url "$CONSOLE_URL" --out "$OUT/console.png" > "$OUT/logs/console_shot.log" 2>&1; then
+    echo "== console screenshot: $OUT/console.png"
+  else
+    echo "run-team.sh: no console screenshot (see $OUT/logs/console_shot.log)"
+  fi
+fi
 kill -TERM "$FUSION_PID"
 if ! wait "$FUSION_PID"; then
   echo "run-team.sh: pena-fusion failed; see $OUT/logs/fusion.log" >&2
@@ -145,4 +173,5 @@ fi
 echo "== mission finished in $((SECONDS - START)) s; writing the report"
 
 "$PENA" report --mission "$MISSION" --run "$OUT" | tee "$OUT/logs/report.log"
-echo "== demo output: $OUT (report.md, report.json, global_map.png/.svg/.csv, <entity>/trajectory.tum)"
+echo "== demo output: $OUT (report.md, report.json, global_map.png/.svg/.csv, <entity>/trajectory.tum$(
+  [[ -f $OUT/console.png ]] && echo ", console.png"))"

@@ -7,6 +7,7 @@
 
 #include "from_dds.hpp"
 #include "fusion_service.hpp"
+#include "pena/localisation/operator_corrections.hpp"
 #include "to_dds.hpp"
 
 namespace pena::services {
@@ -76,6 +77,8 @@ void FusionService::Handle(const pena_dds::EntityPose& sample, const SampleMeta&
   entity_of_participant_[ParticipantOf(meta.publication)] = entity_id;
   stats_.Count("received", topics::kPose.name, entity_id,
                SizeOf<pena_dds::EntityPosePubSubType>(sample));
+  latest_pose_[entity_id] = {sample.stamp_s(), FromDds(sample.world_from_body()),
+                             FromDds(sample.odom_from_body())};
   stats_.Pose(entity_id, static_cast<double>(meta.reception_time_ns - meta.source_time_ns) * 1e-9,
               sample.stamp_s(), FromDds(sample.world_from_body()),
               FromDds(sample.odom_from_body()));
@@ -135,12 +138,16 @@ void FusionService::Handle(const pena_dds::OperatorCorrection& sample, const Sam
   CheckSchemaVersion(sample.schema_version(), "OperatorCorrection");
   stats_.Count("received", topics::kOperatorCorrection.name, sample.operator_id().to_string(),
                SizeOf<pena_dds::OperatorCorrectionPubSubType>(sample));
+  const std::string entity_id = sample.target_entity_id().to_string();
+  if (sample.kind() == pena_dds::OPERATOR_ROTATE || sample.kind() == pena_dds::OPERATOR_TRANSLATE) {
+    HandleOperatorMove(sample);
+    return;
+  }
   if (sample.kind() != pena_dds::OPERATOR_SET_POSE) {
-    spdlog::warn("operator correction {}: only OPERATOR_SET_POSE is supported; ignored",
+    spdlog::warn("operator correction {}: segment edits are not supported; ignored",
                  sample.correction_id().to_string());
     return;
   }
-  const std::string entity_id = sample.target_entity_id().to_string();
   // Relayed to the entity, which moves its own frame (its later walls arrive corrected).
   pipeline::Correction correction;
   correction.kind = pipeline::Correction::Kind::kPose;
@@ -152,6 +159,84 @@ void FusionService::Handle(const pena_dds::OperatorCorrection& sample, const Sam
   if (corrections_) corrections_->Forget(entity_id);  // the entity's frame is the operator's now
   spdlog::info("operator {} set {}'s pose at {:.3f} s; relayed as a correction",
                sample.operator_id().to_string(), entity_id, sample.stamp_s());
+}
+
+void FusionService::HandleOperatorMove(const pena_dds::OperatorCorrection& sample) {
+  const std::string id = sample.correction_id().to_string();
+  const std::string entity_id = sample.target_entity_id().to_string();
+  const std::string author = sample.operator_id().to_string();
+  if (operator_log_->Contains(id)) return;  // applied before (a durable sample comes again)
+  const auto point = [](const pena_dds::Point2& p) { return Eigen::Vector2d(p.x_m(), p.y_m()); };
+  localisation::OperatorCorrection move;
+  if (sample.kind() == pena_dds::OPERATOR_ROTATE) {
+    move = localisation::RotationCorrection{sample.stamp_s(), point(sample.rotation_origin()),
+                                            point(sample.wrong_point()),
+                                            point(sample.correct_point())};
+  } else {
+    move = localisation::TranslationCorrection{sample.stamp_s(), point(sample.wrong_point()),
+                                               point(sample.correct_point())};
+  }
+  geometry::Pose2 corrected_from_wrong;
+  try {
+    corrected_from_wrong = localisation::CorrectionTransform(move);  // section 4.1
+  } catch (const std::invalid_argument& error) {
+    spdlog::warn("operator correction {} of {} dropped: {}", id, entity_id, error.what());
+    return;
+  }
+  if (!std::isfinite(corrected_from_wrong.x_m) || !std::isfinite(corrected_from_wrong.y_m) ||
+      !std::isfinite(corrected_from_wrong.theta_rad)) {
+    spdlog::warn("operator correction {} of {} dropped: not finite", id, entity_id);
+    return;
+  }
+  const double angle_deg = corrected_from_wrong.theta_rad * 180.0 / M_PI;
+  const bool placed_entity = start_unknown_[entity_id];
+  const auto latest = latest_pose_.find(entity_id);
+  if (!placed_entity && latest == latest_pose_.end()) {
+    spdlog::warn("operator correction {} of {} dropped: no pose of it heard yet", id, entity_id);
+    return;
+  }
+  // Recorded (and synced) before it is applied: a restart neither loses nor repeats it.
+  try {
+    operator_log_->Append({id, entity_id, author,
+                           sample.kind() == pena_dds::OPERATOR_ROTATE ? "rotate" : "translate",
+                           sample.stamp_s(), corrected_from_wrong});
+  } catch (const std::runtime_error& error) {
+    spdlog::error("operator correction {} of {} NOT applied: {}", id, entity_id, error.what());
+    return;
+  }
+  if (placed_entity) {
+    // A placed entity keeps its own frame: its walls move with its alignment (journaled), and
+    // it is told its new frame.
+    const fusion::FusionOutput output =
+        Apply(fusion::OperatorCorrection{NowS(), entity_id, corrected_from_wrong, author});
+    if (!output.problem.empty()) {
+      spdlog::warn("operator correction {} dropped: {}", id, output.problem);
+      return;
+    }
+    SendPlacement(entity_id, 1.0, 0);
+  } else {
+    // An entity with a known start moves its own frame: map_from_odom <- T * map_from_odom, from
+    // its latest pose (world_from_body = map_from_odom * odom_from_body). Its later poses and
+    // walls arrive corrected.
+    const LatestPose& latest_pose = latest->second;
+    {
+      const std::lock_guard<std::mutex> lock(send_mutex_);
+      operator_barrier_s_[entity_id] = latest_pose.stamp_s;
+    }
+    pipeline::Correction correction;
+    correction.kind = pipeline::Correction::Kind::kMapFromOdom;
+    correction.map_from_odom = geometry::Compose(
+        corrected_from_wrong, geometry::Compose(latest_pose.world_from_body,
+                                                geometry::Inverse(latest_pose.odom_from_body)));
+    correction.confidence = 1.0;
+    // An operator's correction: the entity applies it whatever its size (correction_gate).
+    SendCorrection(entity_id, correction, 0, store_->state().global_version(), author);
+  }
+  if (corrections_) corrections_->Forget(entity_id);  // the entity's frame is the operator's now
+  stats_.Add("operator_corrections");
+  spdlog::info("operator {}: {} of {} by ({:.3f} m, {:.3f} m, {:.2f} deg) from {:.3f} s sent",
+               author, id, entity_id, corrected_from_wrong.x_m, corrected_from_wrong.y_m,
+               angle_deg, sample.stamp_s());
 }
 
 void FusionService::Handle(const pena_dds::Annotation& sample, const SampleMeta& meta) {

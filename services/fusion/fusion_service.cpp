@@ -66,6 +66,7 @@ FusionService::FusionService(FusionServiceOptions options)
                    }),
       sync_reader_(participant_, topics::kSyncRequest,
                    Enqueue<pena_dds::SyncRequestPubSubType>("sync_request")) {
+  operator_log_.emplace(options_.state_dir / "operator_corrections.csv");
   CreateOperatorEndpoints();
   if (options_.lockstep) lockstep_order_.emplace(options_.lockstep_order);
   const fusion::FusionRecovery& recovery = store_->recovery();
@@ -261,11 +262,19 @@ void FusionService::SendCorrection(const std::string& entity_id,
                                    std::uint64_t reference_seq, std::uint64_t for_version,
                                    const std::string& operator_id) {
   const std::lock_guard<std::mutex> lock(send_mutex_);
+  pipeline::Correction out = correction;
+  if (reference_seq > 0 && out.kind == pipeline::Correction::Kind::kPose && out.confidence > 0.0) {
+    const auto barrier = operator_barrier_s_.find(entity_id);
+    if (barrier != operator_barrier_s_.end() && out.stamp_s <= barrier->second) {
+      out.confidence = 0.0;  // from before the operator's move: an answer, not a correction
+      stats_.Add("corrections_superseded_by_operator");
+    }
+  }
   // Entities drop a seq that does not increase: starting from the clock (ms) keeps a restarted
   // fusion above what it sent before.
   std::uint64_t& seq = correction_seq_[entity_id];
   seq = std::max(seq + 1, static_cast<std::uint64_t>(std::max<std::int64_t>(0, NowNs() / 1'000'000)));
-  pena_dds::Correction sample = ToDdsCorrection(correction, entity_id, seq, for_version, reference_seq);
+  pena_dds::Correction sample = ToDdsCorrection(out, entity_id, seq, for_version, reference_seq);
   SetBounded(sample.operator_id(), operator_id, "operator_id");
   if (!correction_writer_.Write(sample)) spdlog::warn("DDS refused a correction for {}", entity_id);
   stats_.Count("sent", topics::kCorrection.name, entity_id,

@@ -23,6 +23,7 @@
 #include "fusion_options.hpp"
 #include "fusion_stats.hpp"
 #include "lockstep_order.hpp"
+#include "operator_log.hpp"
 #include "versions_log.hpp"
 #include "pena/fusion/correction_filter.hpp"
 #include "pena/fusion/fusion_store.hpp"
@@ -90,6 +91,8 @@ class FusionService {
   void Handle(const pena_dds::LineMapDelta& sample, const SampleMeta& meta);
   void Handle(const pena_dds::LineMapSnapshot& sample, const SampleMeta& meta);
   void Handle(const pena_dds::OperatorCorrection& sample, const SampleMeta& meta);
+  // The operator's three-point rotation or translation (paper section 4.1) of one entity.
+  void HandleOperatorMove(const pena_dds::OperatorCorrection& sample);
   void Handle(const pena_dds::Annotation& sample, const SampleMeta& meta);
   void Handle(const pena_dds::SyncRequest& sample, const SampleMeta& meta);
   void Handle(const pena_dds::ReferenceScan& sample, const SampleMeta& meta);
@@ -156,6 +159,18 @@ class FusionService {
   std::set<std::string> correction_reader_seen_;  // lockstep: entities whose reader matched
   std::int64_t context_refreshed_ns_ = 0;
   std::map<std::string, std::int64_t> annotation_ids_;  // DDS annotation_id -> fusion id
+  // Each entity's latest world_from_body and odom_from_body (an operator move needs its frame).
+  struct LatestPose {
+    double stamp_s = 0.0;
+    geometry::Pose2 world_from_body;
+    geometry::Pose2 odom_from_body;
+  };
+  std::map<std::string, LatestPose> latest_pose_;
+  // Under send_mutex_: per entity, the stamp of its latest pose when an operator moved it. An
+  // automatic correction for a reference scan up to then was computed in the frame the operator
+  // replaced: it is sent as a mere answer (confidence 0) so that it cannot undo the move.
+  std::map<std::string, double> operator_barrier_s_;
+  std::optional<OperatorLog> operator_log_;  // STATE_DIR/operator_corrections.csv
   bool snapshot_dirty_ = true;
   std::int64_t next_snapshot_ns_ = 0;
   std::int64_t next_tick_ns_ = 0;

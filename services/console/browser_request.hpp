@@ -1,0 +1,61 @@
+#pragma once
+// What a browser may ask pena-console, parsed and checked before anything is done: a message is
+// one JSON object of at most kMaxRequestBytes with a "type", an optional request number "req"
+// (echoed in the answer) and the fields of its type. Every number must be finite and within
+// kMaxCoordinateM of the origin. A message that fails gives an error naming the field; nothing
+// is applied.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <variant>
+
+namespace pena::services {
+
+inline constexpr std::size_t kMaxRequestBytes = 4096;
+inline constexpr double kMaxCoordinateM = 100'000.0;
+
+// The three-point rotation (paper section 4.1): {"type": "rotate", "entity": "ff1",
+// "origin": [x, y], "wrong": [x, y], "correct": [x, y]}, map frame, metres.
+struct RotateRequest {
+  std::string entity_id;
+  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
+  Eigen::Vector2d wrong_m = Eigen::Vector2d::Zero();
+  Eigen::Vector2d correct_m = Eigen::Vector2d::Zero();
+};
+
+// A mark on the map: {"type": "annotate", "kind": "victim_found", "position": [x, y],
+// "radius_m": 0, "text": "..."}; kind one of victim_found, dangerous_area, corridor_crossing,
+// elevator, stairs, exit, free_text; radius_m in [0, 1000] (optional), text at most 255 bytes
+// (optional).
+struct AnnotateRequest {
+  std::string kind;
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+  double radius_m = 0.0;
+  std::string text;
+};
+
+// {"type": "retract", "id": "<annotation_id>"}: the mark no longer holds.
+struct RetractRequest {
+  std::string annotation_id;
+};
+
+// {"type": "ping"}: answered with "pong" (the page measures its round trip).
+struct PingRequest {};
+
+using BrowserCommand = std::variant<RotateRequest, AnnotateRequest, RetractRequest, PingRequest>;
+
+// A parsed request, or the reason it was refused.
+struct BrowserRequest {
+  std::int64_t req = 0;  // the browser's request number (0 if it gave none)
+  std::variant<BrowserCommand, std::string> command_or_error;
+  bool ok() const { return command_or_error.index() == 0; }
+  const std::string& error() const { return std::get<std::string>(command_or_error); }
+  const BrowserCommand& command() const { return std::get<BrowserCommand>(command_or_error); }
+};
+
+// Parses one WebSocket text message.
+BrowserRequest ParseBrowserRequest(std::string_view text);
+
+}  // namespace pena::services

@@ -1,0 +1,354 @@
+// Drives Debian's chromium (headless, puppeteer-core) against a running pena-console while a team
+// mission runs (console_browser_test.sh starts both). Checks, in order:
+//   1. the entities appear and move, their markers are drawn where their poses are, and the
+//      poses are near the mission's ground truth;
+//   2. hostile messages over the WebSocket are refused with an error and change nothing, and the
+//      page shows the operator the error;
+//   3. a second page, and the same page reloaded, hold the same picture as the first; (--url2) a
+//      victim marked on the page reaches a second pena-console over DDS, and so does its
+//      retraction;
+//   4. (--rotate ENTITY) the three-point rotation: the test corrupts the entity's heading by
+//      20 deg through the console, then clicks the three points on the page (origin, the wrong
+//      direction, the correct direction); the entity's published poses must come back within
+//      0.3 m of the truth.
+// Prints figures; exits 1 with the reason on the first failed check.
+//
+//   node console_browser_test.js --url URL --out DIR --mission DIR [--entities 4] [--url2 URL]
+//                                [--rotate ff2]
+'use strict';
+
+const fs = require('fs');
+const os = require('os');
+const path = require('path');
+const puppeteer = require('puppeteer-core');
+
+function args() {
+  const out = { entities: 4, chromium: '/usr/bin/chromium', rotate: '' };
+  const argv = process.argv.slice(2);
+  for (let i = 0; i < argv.length; i += 2) out[argv[i].replace(/^--/, '')] = argv[i + 1];
+  out.entities = Number(out.entities);
+  for (const key of ['url', 'out', 'mission']) if (!out[key]) throw new Error(`--${key} is required`);
+  return out;
+}
+
+function fail(message) {
+  console.error(`FAIL: ${message}`);
+  process.exit(1);
+}
+const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+
+// TUM trajectory: "stamp x y z qx qy qz qw" per line.
+function readTum(file) {
+  const rows = [];
+  for (const line of fs.readFileSync(file, 'utf8').split('\n')) {
+    if (!line || line.startsWith('#')) continue;
+    const v = line.trim().split(/\s+/).map(Number);
+    rows.push([v[0], v[1], v[2]]);
+  }
+  return rows;
+}
+// The truth position at `stamp` (linear between the two nearest rows).
+function truthAt(rows, stamp) {
+  let lo = 0, hi = rows.length - 1;
+  if (stamp <= rows[0][0]) return [rows[0][1], rows[0][2]];
+  if (stamp >= rows[hi][0]) return [rows[hi][1], rows[hi][2]];
+  while (hi - lo > 1) {
+    const mid = (lo + hi) >> 1;
+    if (rows[mid][0] <= stamp) lo = mid; else hi = mid;
+  }
+  const f = (stamp - rows[lo][0]) / (rows[hi][0] - rows[lo][0]);
+  return [rows[lo][1] + f * (rows[hi][1] - rows[lo][1]), rows[lo][2] + f * (rows[hi][2] - rows[lo][2])];
+}
+function truthFile(mission, id) {
+  for (const name of ['truth.tum', 'ground_truth.tum']) {
+    const file = path.join(mission, id, name);
+    if (fs.existsSync(file)) return file;
+  }
+  const tum = fs.readdirSync(path.join(mission, id)).find((f) => f.includes('truth') && f.endsWith('.tum'));
+  if (!tum) throw new Error(`no truth trajectory for ${id} in ${mission}`);
+  return path.join(mission, id, tum);
+}
+
+async function waitFor(page, predicate, arg, timeoutMs, what) {
+  try {
+    await page.waitForFunction(predicate, { timeout: timeoutMs, polling: 100 }, arg);
+  } catch (e) {
+    fail(`${what} within ${timeoutMs / 1000} s`);
+  }
+}
+
+const poses = (page) => page.evaluate(() => {
+  const out = {};
+  for (const [id, e] of window.penaConsole.state.entities) if (e.pose) out[id] = { ...e.pose, state: e.state };
+  return out;
+});
+
+async function main() {
+  const o = args();
+  fs.mkdirSync(o.out, { recursive: true });
+  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'pena-chromium-'));
+  // No internet here: nothing in the browser may try to reach it.
+  const browser = await puppeteer.launch({
+    executablePath: o.chromium,
+    headless: true,
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+           '--disable-background-networking', '--disable-component-update', '--disable-sync',
+           `--user-data-dir=${profile}`, '--window-size=1280,800'],
+    defaultViewport: { width: 1280, height: 800 },
+  });
+  try {
+    await run(browser, o);
+  } finally {
+    await browser.close();
+    fs.rmSync(profile, { recursive: true, force: true });
+  }
+}
+
+async function run(browser, o) {
+  const page = await browser.newPage();
+  const pageErrors = [];
+  page.on('pageerror', (e) => pageErrors.push(String(e)));
+  await page.goto(o.url, { waitUntil: 'load' });
+
+  // ---- 1. the entities appear and move ----
+  await waitFor(page, (n) => window.penaConsole.state.connected &&
+      [...window.penaConsole.state.entities.values()].filter((e) => e.pose).length >= n,
+      o.entities, 120000, `${o.entities} entities with poses did not appear`);
+  // In lockstep an entity ahead of the others waits for them: each must advance within 30 s.
+  const first = await poses(page);
+  let second = first;
+  for (const until = Date.now() + 30000; Date.now() < until;) {
+    await sleep(500);
+    second = await poses(page);
+    if (Object.keys(first).every((id) => second[id].stamp_s > first[id].stamp_s + 2)) break;
+  }
+  const ids = Object.keys(first).sort();
+  console.log(`entities: ${ids.join(' ')}`);
+  const truth = {};
+  for (const id of ids) {
+    truth[id] = readTum(truthFile(o.mission, id));
+    const a = first[id], b = second[id];
+    const moved = Math.hypot(b.x - a.x, b.y - a.y);
+    const t = truthAt(truth[id], b.stamp_s);
+    const error = Math.hypot(b.x - t[0], b.y - t[1]);
+    console.log(`  ${id}: ${b.state}, stamp ${a.stamp_s.toFixed(1)} -> ${b.stamp_s.toFixed(1)} s, moved ${moved.toFixed(2)} m, ` +
+                `${error.toFixed(2)} m from the truth`);
+    if (!(b.stamp_s > a.stamp_s)) fail(`${id}'s pose did not advance in 30 s`);
+    if (error > 2.0) fail(`${id} is drawn ${error.toFixed(2)} m from its true position (> 2 m)`);
+  }
+  if (!ids.some((id) => Math.hypot(second[id].x - first[id].x, second[id].y - first[id].y) > 0.3)) {
+    fail('no entity moved more than 0.3 m');
+  }
+  // The markers are drawn where the poses are: the canvas pixel at each marker has its colour.
+  const drawn = await page.evaluate(() => {
+    const c = window.penaConsole;
+    c.redraw();
+    const canvas = document.getElementById('map');
+    const ctx = canvas.getContext('2d');
+    const out = {};
+    const palette = ['#1565c0', '#c62828', '#2e7d32', '#6a1b9a', '#ef6c00', '#00838f', '#ad1457', '#4e342e', '#283593', '#558b2f'];
+    const ids = [...c.state.entities.keys()].sort();
+    for (const [id, e] of c.state.entities) {
+      if (!e.pose) continue;
+      const [sx, sy] = c.toScreen(e.pose.x, e.pose.y);
+      const p = ctx.getImageData(Math.round(sx), Math.round(sy), 1, 1).data;
+      const hex = palette[ids.indexOf(id) % palette.length];
+      const want = [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16));
+      out[id] = { sx, sy, inside: sx >= 0 && sy >= 0 && sx < canvas.width && sy < canvas.height,
+                  match: Math.max(...want.map((w, i) => Math.abs(w - p[i]))) <= 40, pixel: [p[0], p[1], p[2]] };
+    }
+    return out;
+  });
+  for (const [id, d] of Object.entries(drawn)) {
+    const crowded = Object.entries(drawn).some(([other, e]) => other !== id && Math.hypot(e.sx - d.sx, e.sy - d.sy) < 20);
+    if (!d.inside) fail(`${id}'s marker is outside the canvas (${d.sx.toFixed(0)}, ${d.sy.toFixed(0)})`);
+    if (!crowded && !d.match) fail(`${id}'s marker pixel is ${d.pixel}, not its colour`);
+  }
+  await page.screenshot({ path: path.join(o.out, 'console_live.png') });
+  console.log(`screenshot ${path.join(o.out, 'console_live.png')}`);
+
+  // ---- 2. hostile input ----
+  const hostile = [
+    'not json',
+    JSON.stringify({ type: 'rotate', entity: 'nobody', origin: [0, 0], wrong: [1, 0], correct: [0, 1] }),
+    '{"type":"rotate","entity":"' + ids[0] + '","origin":[0,0],"wrong":[1e999,0],"correct":[0,1]}',
+    JSON.stringify({ type: 'rotate', entity: ids[0], origin: [0, 'NaN'], wrong: [1, 0], correct: [0, 1] }),
+    JSON.stringify({ type: 'rotate', entity: ids[0], origin: [5000, 5000], wrong: [5001, 5000], correct: [5000, 5001] }),
+    JSON.stringify({ type: 'ping', pad: 'x'.repeat(5000) }),
+    JSON.stringify({ type: 'shutdown' }),
+  ];
+  const replies = await page.evaluate(async (messages) => {
+    const ws = new WebSocket(`ws://${location.host}/ws`);
+    const got = [];
+    await new Promise((resolve) => { ws.onopen = resolve; });
+    ws.onmessage = (ev) => { const m = JSON.parse(ev.data); if (m.type === 'error' || m.type === 'ack') got.push(m); };
+    for (const m of messages) ws.send(m);
+    const until = Date.now() + 5000;
+    while (got.length < messages.length && Date.now() < until) await new Promise((r) => setTimeout(r, 50));
+    ws.close();
+    return got;
+  }, hostile);
+  if (replies.length !== hostile.length) fail(`${replies.length} answers to ${hostile.length} hostile messages`);
+  for (const r of replies) {
+    if (r.type !== 'error') fail(`a hostile message was accepted: ${JSON.stringify(r)}`);
+    console.log(`  refused: ${r.message}`);
+  }
+  // Through the page's own connection the operator sees the error.
+  await page.evaluate(() => window.penaConsole.send({ type: 'rotate', entity: 'ghost', origin: [0, 0], wrong: [1, 0], correct: [0, 1] }));
+  await waitFor(page, () => [...document.querySelectorAll('#messages li.error')].some((li) => li.textContent.includes('ghost')),
+                null, 5000, 'the page did not show the error for an unknown entity');
+  const corrections = await page.evaluate(() => window.penaConsole.state.corrections.length);
+  if (corrections !== 0) fail(`${corrections} corrections after hostile input (expected none)`);
+  console.log(`hostile input: ${hostile.length + 1} messages refused, nothing applied`);
+
+  // ---- 3. a second page and a reload hold the same picture ----
+  const other = await browser.newPage();
+  await other.goto(o.url, { waitUntil: 'load' });
+  await samePicture(page, other, 'a second page');
+  await other.reload({ waitUntil: 'load' });
+  await samePicture(page, other, 'the reloaded page');
+  await other.close();
+  if (o.url2) await annotation(browser, page, o);
+
+  // ---- 4. the three-point rotation ----
+  if (o.rotate) await rotation(page, o, truth[o.rotate]);
+
+  await page.screenshot({ path: path.join(o.out, 'console.png') });
+  if (pageErrors.length) fail(`errors in the page: ${pageErrors.join('; ')}`);
+  console.log('PASS');
+}
+
+// Both pages at the same map version show the same walls and the same entities.
+async function samePicture(a, b, what) {
+  const picture = (page) => page.evaluate(() => {
+    const s = window.penaConsole.state;
+    return { version: s.mapVersion, snapshots: s.snapshots,
+             segments: JSON.stringify([...s.segments.entries()].sort((x, y) => x[0] - y[0])),
+             entities: [...s.entities.keys()].sort().join(),
+             corrections: s.corrections.length, annotations: s.annotations.size };
+  });
+  const until = Date.now() + 20000;
+  for (;;) {
+    const [pa, pb] = [await picture(a), await picture(b)];
+    if (pb.snapshots >= 1 && pa.version === pb.version && pa.segments === pb.segments &&
+        pa.entities === pb.entities && pa.corrections === pb.corrections) {
+      console.log(`${what}: same picture at map version ${pa.version} (${JSON.parse(pa.segments).length} segments, entities ${pa.entities})`);
+      return;
+    }
+    if (Date.now() > until) {
+      fail(`${what} differs: versions ${pa.version}/${pb.version}, entities ${pa.entities}/${pb.entities}, ` +
+           `segments equal ${pa.segments === pb.segments}`);
+    }
+    await sleep(100);
+  }
+}
+
+// A victim marked by clicks on the first console's page shows on the second console's page;
+// the retraction too.
+async function annotation(browser, page, o) {
+  const e = Object.values(await poses(page))[0];
+  const target = [e.x + 0.5, e.y + 0.5];
+  await page.select('#mark-kind', 'victim_found');
+  await page.type('#mark-text', 'two people, test');
+  const acks = await page.evaluate(() => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length);
+  await page.click('#mark');
+  await click(page, target[0], target[1]);
+  await waitFor(page, (n) => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length > n,
+                acks, 5000, 'no answer to the mark');
+  const second = await browser.newPage();
+  await second.goto(o.url2, { waitUntil: 'load' });
+  const seen = () => second.evaluate(() => [...window.penaConsole.state.annotations.values()]
+      .filter((a) => a.kind === 'victim_found' && a.text === 'two people, test'));
+  const until = Date.now() + 15000;
+  let marks = [];
+  while (Date.now() < until && (marks = await seen()).length === 0) await sleep(100);
+  if (marks.length !== 1) fail(`the second console shows ${marks.length} victim marks (expected 1)`);
+  const m = marks[0];
+  const scale = await page.evaluate(() => window.penaConsole.view.scale);
+  const offPx = Math.hypot(m.x - target[0], m.y - target[1]) * scale;
+  console.log(`victim marked at (${m.x.toFixed(2)}, ${m.y.toFixed(2)}) by ${m.author}: on the second console, ` +
+              `${offPx.toFixed(1)} px from the click`);
+  if (offPx > 2) fail(`the mark is ${offPx.toFixed(1)} px from where it was clicked`);
+  if (m.retracted) fail('the mark arrived retracted');
+  await page.bringToFront();  // a background tab gets no animation frames, which clicks wait for
+  const button = `#annotations li[data-annotation="${m.id}"] button.retract`;
+  await page.waitForSelector(button, { timeout: 5000 });
+  await page.click(button);
+  while (Date.now() < until + 10000 && !(await second.evaluate((id) => {
+    const a = window.penaConsole.state.annotations.get(id);
+    return a && a.retracted;
+  }, m.id))) await sleep(100);
+  const retracted = await second.evaluate((id) => window.penaConsole.state.annotations.get(id).retracted, m.id);
+  if (!retracted) fail('the retraction did not reach the second console');
+  console.log('retracted on the first console: retracted on the second');
+  await second.close();
+  await page.bringToFront();
+}
+
+// Clicks a map point (metres) on the canvas.
+async function click(page, x, y) {
+  const [sx, sy] = await page.evaluate((x, y) => window.penaConsole.toScreen(x, y), x, y);
+  const box = await (await page.$('#map')).boundingBox();
+  await page.mouse.click(box.x + sx, box.y + sy);
+}
+
+async function rotation(page, o, truth) {
+  const id = o.rotate;
+  const error = (p) => { const t = truthAt(truth, p.stamp_s); return Math.hypot(p.x - t[0], p.y - t[1]); };
+  const before = (await poses(page))[id];
+  if (!before) fail(`no pose of ${id}`);
+  console.log(`rotation: ${id} at (${before.x.toFixed(2)}, ${before.y.toFixed(2)}), ${error(before).toFixed(2)} m from the truth`);
+  // Corrupt: +20 deg about where it is now (a heading error the operator must fix).
+  const c = Math.cos(20 * Math.PI / 180), s = Math.sin(20 * Math.PI / 180);
+  const corrupt = await ack(page, { type: 'rotate', entity: id, origin: [before.x, before.y],
+                                    wrong: [before.x + 1, before.y], correct: [before.x + c, before.y + s] });
+  console.log(`  corrupted: ${corrupt}`);
+  // Let it walk in the wrong frame until it is clearly off.
+  let off = before;
+  const until = Date.now() + 60000;
+  while (Date.now() < until) {
+    await sleep(500);
+    off = (await poses(page))[id];
+    if (error(off) > 1.0 && Math.hypot(off.x - before.x, off.y - before.y) > 3.0) break;
+  }
+  console.log(`  walked in the wrong frame to (${off.x.toFixed(2)}, ${off.y.toFixed(2)}), ${error(off).toFixed(2)} m from the truth`);
+  if (error(off) < 0.5) fail(`the 20 deg corruption left ${id} within ${error(off).toFixed(2)} m of the truth: nothing to fix`);
+  await page.screenshot({ path: path.join(o.out, 'console_corrupted.png') });
+  // The operator's three clicks: the origin where the heading went wrong, the entity where the
+  // wrong frame puts it, and where it really is.
+  const t = truthAt(truth, off.stamp_s);
+  await page.select('#rotate-entity', id);
+  await page.click('#rotate');
+  const acks = await page.evaluate(() => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length);
+  await click(page, before.x, before.y);
+  await click(page, off.x, off.y);
+  await click(page, t[0], t[1]);
+  await waitFor(page, (n) => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length > n,
+                acks, 5000, 'no answer to the clicked rotation');
+  const answer = await page.evaluate(() => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').pop().text);
+  console.log(`  clicked rotation: ${answer}`);
+  // The entity's published poses from then on: within 0.3 m of the truth.
+  await sleep(3000);
+  const errors = [];
+  for (let i = 0; i < 10; ++i) {
+    await sleep(400);
+    errors.push(error((await poses(page))[id]));
+  }
+  const worst = Math.max(...errors);
+  console.log(`  after the rotation: ${errors.map((e) => e.toFixed(2)).join(' ')} m from the truth (worst ${worst.toFixed(2)} m)`);
+  if (worst > 0.3) fail(`${id} is ${worst.toFixed(2)} m from the truth after the rotation (> 0.3 m)`);
+  const listed = await page.evaluate(() => window.penaConsole.state.corrections.length);
+  if (listed !== 2) fail(`${listed} corrections listed (expected 2)`);
+}
+
+// Sends a request through the page's connection and waits for its ack.
+async function ack(page, request) {
+  const n = await page.evaluate(() => window.penaConsole.state.messages.length);
+  await page.evaluate((r) => window.penaConsole.send(r), request);
+  await waitFor(page, (n) => window.penaConsole.state.messages.length > n, n, 5000, 'no answer to a rotation');
+  const last = await page.evaluate(() => window.penaConsole.state.messages[window.penaConsole.state.messages.length - 1]);
+  if (last.kind !== 'ack') fail(`rotation refused: ${last.text}`);
+  return last.text;
+}
+
+main().catch((e) => fail(e.stack || String(e)));

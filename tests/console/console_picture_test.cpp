@@ -1,0 +1,129 @@
+#include "console_picture.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace pena::services {
+namespace {
+
+constexpr std::int64_t kSecond = 1'000'000'000;
+
+PoseUpdate Pose(const std::string& id, std::uint64_t seq, double x, double y,
+                std::int64_t heard_ns) {
+  PoseUpdate p;
+  p.entity_id = id;
+  p.seq = seq;
+  p.stamp_s = static_cast<double>(seq);
+  p.world_from_body = {x, y, 0.0};
+  p.covariance[0] = 0.04;
+  p.covariance[4] = 0.01;
+  p.status = "matched";
+  p.heard_ns = heard_ns;
+  return p;
+}
+
+line_map::LineSegment Wall(std::int64_t id, double x, const std::string& source) {
+  line_map::LineSegment s;
+  s.id = id;
+  s.segment.start_m = {x, 0.0};
+  s.segment.end_m = {x, 4.0};
+  s.provenance = {source};
+  return s;
+}
+
+TEST(ConsolePicture, SnapshotHoldsWhatTheDeltasSent) {
+  ConsolePicture picture;
+  picture.OnPose(Pose("ff1", 1, 0.0, 0.0, kSecond));
+  line_map::MapSnapshot map;
+  map.version = 3;
+  map.next_id = 3;
+  map.segments = {Wall(1, 0.0, "plan:4"), Wall(2, 2.0, "ff1:7")};
+  picture.OnMapSnapshot(map);
+  const auto first = picture.TakeDelta(kSecond);
+  ASSERT_TRUE(first);
+  EXPECT_EQ((*first)["map"]["upsert"].size(), 2u);
+  EXPECT_EQ((*first)["entities"][0]["trail_add"].size(), 1u);
+
+  picture.OnPose(Pose("ff1", 2, 1.0, 0.0, kSecond));
+  const auto second = picture.TakeDelta(kSecond);
+  ASSERT_TRUE(second);
+  EXPECT_FALSE(second->contains("map"));  // the map did not change: not sent again
+  ASSERT_EQ((*second)["entities"][0]["trail_add"].size(), 1u);  // only the new trail point
+  EXPECT_DOUBLE_EQ((*second)["entities"][0]["trail_add"][0][1].get<double>(), 1.0);
+  EXPECT_FALSE(picture.TakeDelta(kSecond));  // nothing new
+
+  const nlohmann::json snapshot = picture.Snapshot(kSecond);
+  EXPECT_EQ(snapshot["entities"][0]["trail"].size(), 2u);
+  ASSERT_EQ(snapshot["map"]["segments"].size(), 2u);
+  EXPECT_EQ(snapshot["map"]["segments"][0][5], 0);  // plan only
+  EXPECT_EQ(snapshot["map"]["segments"][1][5], 1);  // observed
+}
+
+TEST(ConsolePicture, EarlyDeltaWaitsForItsPredecessor) {
+  ConsolePicture picture;
+  line_map::MapDelta second;
+  second.from_version = 1;
+  second.to_version = 2;
+  second.added = {Wall(2, 2.0, "ff1:1")};
+  picture.OnMapDelta(second);
+  EXPECT_EQ(picture.map_version(), 0u);
+  line_map::MapDelta first;
+  first.from_version = 0;
+  first.to_version = 1;
+  first.added = {Wall(1, 0.0, "ff1:0")};
+  picture.OnMapDelta(first);
+  EXPECT_EQ(picture.map_version(), 2u);
+}
+
+TEST(ConsolePicture, EntityTurnsStaleWithTimeAlone) {
+  ConsolePicture picture(PictureOptions{3.0, 100, 0.05});
+  picture.OnPose(Pose("r1", 1, 0.0, 0.0, kSecond));
+  EXPECT_EQ((*picture.TakeDelta(kSecond))["entities"][0]["state"], "tracking");
+  EXPECT_FALSE(picture.TakeDelta(2 * kSecond));
+  const auto later = picture.TakeDelta(5 * kSecond);
+  ASSERT_TRUE(later);
+  EXPECT_EQ((*later)["entities"][0]["state"], "stale");
+}
+
+TEST(ConsolePicture, RotationMovesTheTrailFromItsStampOn) {
+  ConsolePicture picture;
+  for (std::uint64_t i = 1; i <= 4; ++i) {
+    picture.OnPose(Pose("ff2", i, static_cast<double>(i), 0.0, kSecond));
+  }
+  picture.TakeDelta(kSecond);
+  CorrectionRecord rotate;
+  rotate.correction_id = "op/1-1";
+  rotate.operator_id = "op";
+  rotate.kind = "rotate";
+  rotate.entity_id = "ff2";
+  rotate.stamp_s = 2.0;
+  // About (2, 0): the direction +x becomes +y (90 degrees).
+  rotate.geometry = localisation::RotationCorrection{2.0, {2.0, 0.0}, {3.0, 0.0}, {2.0, 1.0}};
+  picture.OnCorrection(rotate);
+  picture.OnCorrection(rotate);  // the same durable sample again: listed once
+  const auto delta = picture.TakeDelta(kSecond);
+  ASSERT_TRUE(delta);
+  const nlohmann::json& trail = (*delta)["entities"][0]["trail"];  // whole: sent points moved
+  ASSERT_EQ(trail.size(), 4u);
+  EXPECT_NEAR(trail[0][1].get<double>(), 1.0, 1e-9);  // before the stamp: unchanged
+  EXPECT_NEAR(trail[3][1].get<double>(), 2.0, 1e-9);  // (4, 0) -> (2, 2)
+  EXPECT_NEAR(trail[3][2].get<double>(), 2.0, 1e-9);
+  ASSERT_EQ((*delta)["corrections"].size(), 1u);
+  EXPECT_NEAR((*delta)["corrections"][0]["transform"][2].get<double>(), M_PI / 2, 1e-9);
+}
+
+TEST(ConsolePicture, NearestTrailPoseGivesTheMomentOfTheOrigin) {
+  ConsolePicture picture;
+  for (std::uint64_t i = 1; i <= 5; ++i) {
+    picture.OnPose(Pose("ff3", i, static_cast<double>(i), 0.0, kSecond));
+  }
+  const auto nearest = picture.NearestTrailPose("ff3", {3.1, 0.4});
+  ASSERT_TRUE(nearest);
+  EXPECT_DOUBLE_EQ(nearest->stamp_s, 3.0);
+  EXPECT_NEAR(nearest->distance_m, std::hypot(0.1, 0.4), 1e-12);
+  EXPECT_FALSE(picture.NearestTrailPose("nobody", {0.0, 0.0}));
+}
+
+}  // namespace
+}  // namespace pena::services
