@@ -13,7 +13,10 @@ function(pena_add_module name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_library(pena_${name} STATIC ${ARG_SOURCES})
   add_library(pena::${name} ALIAS pena_${name})
-  target_include_directories(pena_${name} PUBLIC ${PROJECT_SOURCE_DIR}/libpena/include)
+  # Installed as pena::<name> too (cmake/PenaInstall.cmake), headers under <prefix>/include.
+  set_target_properties(pena_${name} PROPERTIES EXPORT_NAME ${name})
+  target_include_directories(pena_${name} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/libpena/include> $<INSTALL_INTERFACE:include>)
   target_link_libraries(pena_${name} PUBLIC ${ARG_DEPS})
   pena_set_warnings(pena_${name})
 endfunction()

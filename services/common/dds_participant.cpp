@@ -7,8 +7,21 @@ namespace pena::services {
 
 namespace dds = eprosima::fastdds::dds;
 
+std::filesystem::path DefaultDdsDir() {
+  if (const char* env = std::getenv("PENA_DDS_DIR"); env != nullptr && *env != '\0') return env;
+  // An installed daemon: <prefix>/bin/pena-x finds <prefix>/share/pena/dds.
+  std::error_code error;
+  const std::filesystem::path binary = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const std::filesystem::path installed =
+        binary.parent_path().parent_path() / "share" / "pena" / "dds";
+    if (std::filesystem::exists(installed / "pena-loopback.xml", error)) return installed;
+  }
+  return PENA_DEFAULT_DDS_DIR;
+}
+
 std::vector<std::filesystem::path> DefaultProfilesFiles() {
-  const std::filesystem::path dir(PENA_DEFAULT_DDS_DIR);
+  const std::filesystem::path dir = DefaultDdsDir();
   return {dir / "pena-loopback.xml", dir / "pena-qos.xml"};
 }
 

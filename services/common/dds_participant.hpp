@@ -34,7 +34,11 @@ struct DdsOptions {
   int domain_id = 0;
 };
 
-// The default profile files: deploy/dds/pena-loopback.xml and pena-qos.xml of this source tree.
+// Where the default profile files live: $PENA_DDS_DIR when set, else share/pena/dds beside an
+// installed binary (<prefix>/bin/..), else deploy/dds of the source tree this was built from.
+std::filesystem::path DefaultDdsDir();
+
+// The default profile files: pena-loopback.xml and pena-qos.xml of DefaultDdsDir().
 std::vector<std::filesystem::path> DefaultProfilesFiles();
 
 // Loads an XML profile file once per process (later calls for the same file do nothing).

@@ -99,5 +99,22 @@ TEST(ConfigLoader, StrideSpreadingIsOnByDefaultCanBeTurnedOffAndItsHoldIsChecked
   }
 }
 
+// Installed daemons find share/pena/dds beside their bin/ (tests/install checks it is installed);
+// a build-tree binary falls back to deploy/dds of its source tree; PENA_DDS_DIR overrides both.
+TEST(DdsProfiles, DefaultDirIsTheEnvironmentsElseTheSourceTrees) {
+  ::unsetenv("PENA_DDS_DIR");
+  const std::filesystem::path source = std::filesystem::path(PENA_SOURCE_DIR) / "deploy" / "dds";
+  EXPECT_EQ(DefaultDdsDir(), source);
+  ::setenv("PENA_DDS_DIR", "/opt/pena/share/pena/dds", 1);
+  EXPECT_EQ(DefaultDdsDir(), "/opt/pena/share/pena/dds");
+  const std::vector<std::filesystem::path> files = DefaultProfilesFiles();
+  ASSERT_EQ(files.size(), 2u);
+  EXPECT_EQ(files[0], "/opt/pena/share/pena/dds/pena-loopback.xml");
+  EXPECT_EQ(files[1], "/opt/pena/share/pena/dds/pena-qos.xml");
+  ::setenv("PENA_DDS_DIR", "", 1);  // empty: as if unset
+  EXPECT_EQ(DefaultDdsDir(), source);
+  ::unsetenv("PENA_DDS_DIR");
+}
+
 }  // namespace
 }  // namespace pena::services
