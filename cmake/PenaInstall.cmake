@@ -28,7 +28,7 @@ if(PENA_BUILD_TOOLS)
   list(APPEND pena_programs pena)
 endif()
 if(PENA_BUILD_SERVICES)
-  list(APPEND pena_programs pena-entity pena-fusion pena-sensor-replay pena-monitor pena-link-plot
+  list(APPEND pena_programs pena-entity pena-fusion pena-sensor-replay pena-monitor pena-console pena-link-plot
                             pena-link-gridcost)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/deploy/dds ${PROJECT_SOURCE_DIR}/deploy/config
           DESTINATION ${CMAKE_INSTALL_DATADIR}/pena)
