@@ -106,6 +106,48 @@ TEST(CliEval, ReproducesRawOdometryFigureOnMitCsail) {
   EXPECT_LT(mean_m, 1.9);
 }
 
+// A perturbed log: the odometry in the scans' pose fields carries the noise model's errors, ODOM
+// lines are left out, stamps that do not advance (orebro: all 0) are restamped, and --tum keeps
+// the poses as read. The same seed gives the same log; the truth scored against itself is exact.
+TEST(CliExport, PerturbedOdometryIsSeededRestampedAndScoredAgainstTheTruth) {
+  const auto dir = FreshDir("cli_export_perturb");
+  const std::string log = DataPath("radish-corrected/orebro-corrected.log.gz").string();
+  const auto export_seed = [&](const std::string& name, int seed) {
+    return RunPena("export --log " + log + " --carmen " + (dir / name).string() +
+                   " --perturb-odometry " + std::to_string(seed) + " --tum " +
+                   (dir / (name + ".tum")).string());
+  };
+  const PenaRun first = export_seed("a.clf", 4);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_NE(first.out.find("restamped 236 scans"), std::string::npos) << first.out;
+  EXPECT_NE(first.out.find("odometry perturbed (seed 4)"), std::string::npos) << first.out;
+  ASSERT_EQ(export_seed("b.clf", 4).exit_code, 0);
+  ASSERT_EQ(export_seed("c.clf", 5).exit_code, 0);
+  const std::string a = ReadBytes(dir / "a.clf");
+  EXPECT_EQ(a, ReadBytes(dir / "b.clf"));
+  EXPECT_NE(a, ReadBytes(dir / "c.clf"));
+  EXPECT_EQ(a.find("ODOM"), std::string::npos);
+  // The truth has every scan once, in increasing time; the perturbed odometry is off it.
+  const PenaRun self = RunPena("eval --json --trajectory " + (dir / "a.clf.tum").string() +
+                               " --truth " + (dir / "a.clf.tum").string());
+  ASSERT_EQ(self.exit_code, 0) << self.err;
+  EXPECT_EQ(JsonNumber(self.out, "matched"), 237.0);
+  EXPECT_EQ(JsonNumber(self.out, "translation_rmse_m"), 0.0);
+  const auto odometry = dir / "odometry.tum";
+  ASSERT_EQ(RunPena("export --log " + (dir / "a.clf").string() + " --tum " + odometry.string())
+                .exit_code,
+            0);
+  const PenaRun off = RunPena("eval --json --trajectory " + odometry.string() + " --truth " +
+                              (dir / "a.clf.tum").string());
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  EXPECT_GT(JsonNumber(off.out, "final_heading_error_deg"), 1.0);
+  // Perturbing needs a CARMEN output to carry the odometry.
+  EXPECT_NE(RunPena("export --log " + log + " --tum " + (dir / "x.tum").string() +
+                    " --perturb-odometry 1")
+                .exit_code,
+            0);
+}
+
 // The line map's tolerances. A segment 15 cm off its wall is covered at 20 cm, not at the issue's
 // 10 cm; a segment turned 7 deg about a point of its wall is covered at 10 deg, not at 5 deg. The
 // JSON and the table say which tolerances judged the map.
