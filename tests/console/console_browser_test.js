@@ -18,9 +18,8 @@
 'use strict';
 
 const fs = require('fs');
-const os = require('os');
 const path = require('path');
-const puppeteer = require('puppeteer-core');
+const { launchChromium } = require('./chromium');
 
 function args() {
   const out = { entities: 4, chromium: '/usr/bin/chromium', rotate: '' };
@@ -86,21 +85,11 @@ const poses = (page) => page.evaluate(() => {
 async function main() {
   const o = args();
   fs.mkdirSync(o.out, { recursive: true });
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'pena-chromium-'));
-  // No internet here: nothing in the browser may try to reach it.
-  const browser = await puppeteer.launch({
-    executablePath: o.chromium,
-    headless: true,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-           '--disable-background-networking', '--disable-component-update', '--disable-sync',
-           `--user-data-dir=${profile}`, '--window-size=1280,800'],
-    defaultViewport: { width: 1280, height: 800 },
-  });
+  const { browser, close } = await launchChromium(o.chromium);
   try {
     await run(browser, o);
   } finally {
-    await browser.close();
-    fs.rmSync(profile, { recursive: true, force: true });
+    await close();
   }
 }
 

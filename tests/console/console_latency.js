@@ -7,10 +7,7 @@
 //   node console_latency.js --url URL --seconds 40 [--chromium /usr/bin/chromium]
 'use strict';
 
-const fs = require('fs');
-const os = require('os');
-const path = require('path');
-const puppeteer = require('puppeteer-core');
+const { launchChromium } = require('./chromium');
 
 const o = { seconds: 40, chromium: '/usr/bin/chromium', warmup: 5 };
 const argv = process.argv.slice(2);
@@ -21,14 +18,7 @@ function quantile(sorted, q) {
 }
 
 (async () => {
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'pena-chromium-'));
-  const browser = await puppeteer.launch({
-    executablePath: o.chromium, headless: true,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-           '--disable-background-networking', '--disable-component-update', '--disable-sync',
-           `--user-data-dir=${profile}`],
-    defaultViewport: { width: 1280, height: 800 },
-  });
+  const { browser, close } = await launchChromium(o.chromium);
   try {
     const page = await browser.newPage();
     await page.goto(o.url, { waitUntil: 'load' });
@@ -58,7 +48,6 @@ function quantile(sorted, q) {
                 `p50 ${f(quantile(ages, 0.5))} ms, p90 ${f(quantile(ages, 0.9))} ms, ` +
                 `p99 ${f(quantile(ages, 0.99))} ms, max ${f(ages[ages.length - 1])} ms`);
   } finally {
-    await browser.close();
-    fs.rmSync(profile, { recursive: true, force: true });
+    await close();
   }
 })().catch((e) => { console.error(e.stack || String(e)); process.exit(1); });

@@ -5,10 +5,7 @@
 //   node console_shot.js --url URL --out FILE.png [--chromium /usr/bin/chromium]
 'use strict';
 
-const fs = require('fs');
-const os = require('os');
-const path = require('path');
-const puppeteer = require('puppeteer-core');
+const { launchChromium } = require('./chromium');
 
 const o = { chromium: '/usr/bin/chromium' };
 const argv = process.argv.slice(2);
@@ -19,14 +16,7 @@ if (!o.url || !o.out) {
 }
 
 (async () => {
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'pena-chromium-'));
-  const browser = await puppeteer.launch({
-    executablePath: o.chromium, headless: true,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-           '--disable-background-networking', '--disable-component-update', '--disable-sync',
-           `--user-data-dir=${profile}`],
-    defaultViewport: { width: 1280, height: 800 },
-  });
+  const { browser, close } = await launchChromium(o.chromium);
   try {
     const page = await browser.newPage();
     await page.goto(o.url, { waitUntil: 'load' });
@@ -36,7 +26,6 @@ if (!o.url || !o.out) {
     await new Promise((r) => setTimeout(r, 700));  // the side panel refreshes every 500 ms
     await page.screenshot({ path: o.out });
   } finally {
-    await browser.close();
-    fs.rmSync(profile, { recursive: true, force: true });
+    await close();
   }
 })().catch((e) => { console.error(e.stack || String(e)); process.exit(1); });
