@@ -9,6 +9,7 @@
 #include <set>
 
 #include "link_pair.hpp"
+#include "team_checks.hpp"
 #include "pena/gateway/link_crypto.hpp"
 #include "pena/gateway/synthetic_team.hpp"
 
@@ -17,22 +18,8 @@ namespace {
 
 using testing::Endpoint;
 using testing::LinkPair;
-
-double Percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  return values[static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1))];
-}
-
-bool MapsEqual(const SyntheticTeam& team, const InMemoryDomain& far) {
-  for (const auto& [map_id, map] : team.maps()) {
-    const auto found = far.maps().find(map_id);
-    if (found == far.maps().end() || !line_map::SameMap(found->second.Snapshot(), map.Snapshot())) {
-      return false;
-    }
-  }
-  return true;
-}
+using testing::MapsEqual;
+using testing::Percentile;
 
 TEST(EndToEnd, NoMapDeltaLostThroughA30SecondOutageAt9600Bits) {
   EmulatedLinkOptions radio;

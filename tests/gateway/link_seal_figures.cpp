@@ -8,27 +8,17 @@
 #include <vector>
 
 #include "link_pair.hpp"
+#include "team_checks.hpp"
 #include "pena/gateway/link_crypto.hpp"
 #include "pena/gateway/synthetic_team.hpp"
 
 namespace pena::gateway {
 namespace {
 
+using testing::MapsEqual;
+using testing::Percentile;
+
 constexpr double kRateBitS = 9600.0;
-
-double Percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  return values[static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1))];
-}
-
-bool MapsEqual(const SyntheticTeam& team, const InMemoryDomain& far) {
-  for (const auto& [map_id, map] : team.maps()) {
-    const auto found = far.maps().find(map_id);
-    if (found == far.maps().end() || !line_map::SameMap(found->second.Snapshot(), map.Snapshot())) return false;
-  }
-  return true;
-}
 
 // The team scenario of gateway_link_figures (4 entities, maps for 200 s, 240 s) through an
 // emulated 9.6 kbit/s link with 0.2 s delay, sealed or open.
