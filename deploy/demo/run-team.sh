@@ -56,11 +56,9 @@ trap cleanup EXIT
 trap 'exit 130' INT TERM
 
 if [[ -z ${PENA_DDS_DOMAIN:-} ]]; then
-  for d in $(seq 30 99); do
-    exec {lock_fd}>"/tmp/pena-dds-domain-$d.lock"
-    if flock -n "$lock_fd"; then PENA_DDS_DOMAIN=$d; break; fi
-    exec {lock_fd}>&-
-  done
+  # shellcheck source=../dds/domain-lock.sh
+  source "$REPO/deploy/dds/domain-lock.sh"
+  pena_lock_dds_domain PENA_DDS_DOMAIN
 fi
 DOMAIN=${PENA_DDS_DOMAIN:?no free DDS domain in 30..99}
 

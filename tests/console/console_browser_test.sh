@@ -31,13 +31,10 @@ cleanup() {
 }
 trap cleanup EXIT
 
-# A DDS domain of our own (the same locks as run-team.sh, so parallel runs do not meet).
-for d in $(seq 30 99); do
-  exec {lock_fd}>"/tmp/pena-dds-domain-$d.lock"
-  if flock -n "$lock_fd"; then DOMAIN=$d; break; fi
-  exec {lock_fd}>&-
-done
-DOMAIN=${DOMAIN:?no free DDS domain in 30..99}
+# A DDS domain of our own (deploy/dds/domain-lock.sh: parallel runs do not meet).
+# shellcheck source=../../deploy/dds/domain-lock.sh
+source "$REPO/deploy/dds/domain-lock.sh"
+pena_lock_dds_domain DOMAIN
 
 "$BUILD/tools/pena/pena" simulate --scenario team --seed 1 --out "$OUT/mission" > "$OUT/simulate.log"
 

@@ -24,12 +24,9 @@ cleanup() {
 }
 trap cleanup EXIT
 
-for d in $(seq 30 99); do
-  exec {lock_fd}>"/tmp/pena-dds-domain-$d.lock"
-  if flock -n "$lock_fd"; then DOMAIN=$d; break; fi
-  exec {lock_fd}>&-
-done
-DOMAIN=${DOMAIN:?no free DDS domain in 30..99}
+# shellcheck source=../../deploy/dds/domain-lock.sh
+source "$REPO/deploy/dds/domain-lock.sh"
+pena_lock_dds_domain DOMAIN
 
 "$BUILD/tools/pena/pena" simulate --scenario team --seed 1 --out "$WORK/team" > /dev/null
 "$BUILD/services/console/pena-console" --port 0 --port-file "$WORK/port" --domain "$DOMAIN" \
