@@ -97,7 +97,6 @@ DeadReckoningEvent HumanDeadReckoning::AddStride(const sensors::StrideSample& st
   // all new motion, and no jump is counted).
   const bool extrapolating = PaceKnown();
   const Eigen::Vector2d ahead_m = calibration_.scale() * AheadRawM(stride.stamp_s);
-  const double stride_start_s = last_stride_stamp_s_;
   last_stride_period_s_ = stride.stamp_s - last_stride_stamp_s_;
   last_stride_stamp_s_ = stride.stamp_s;
   last_stride_m_ = stride.length_m;
@@ -113,7 +112,7 @@ DeadReckoningEvent HumanDeadReckoning::AddStride(const sensors::StrideSample& st
   const Eigen::Vector2d normal(-direction.y(), direction.x());
   const double length_m = calibration_.scale() * stride.length_m;
   position_m_ += length_m * direction;
-  if (extrapolating) NoteJump(stride_start_s, stride.stamp_s, length_m * direction - ahead_m);
+  if (extrapolating) extrapolation_jumps_m_ += length_m * direction - ahead_m;
   raw_walk_m_ += stride.length_m * direction;
   const double length_sigma_m = options_.stride_sigma_fraction * length_m;
   const double lateral_sigma_m = length_m * heading_.heading_sigma_rad();
@@ -131,26 +130,6 @@ DeadReckoningEvent HumanDeadReckoning::Count(DeadReckoningEvent event) {
     default: break;
   }
   return event;
-}
-
-void HumanDeadReckoning::NoteJump(double stride_start_s, double stamp_s,
-                                  const Eigen::Vector2d& jump_m) {
-  extrapolation_jumps_m_ += jump_m;
-  // Bounded for users that never take them (only the laser odometry does, scan by scan).
-  if (pending_jumps_.size() >= kMaxPendingJumps) pending_jumps_.erase(pending_jumps_.begin());
-  pending_jumps_.push_back({stride_start_s, stamp_s, jump_m});
-}
-
-std::vector<StrideJump> HumanDeadReckoning::TakeStrideJumps() {
-  std::vector<StrideJump> taken;
-  taken.swap(pending_jumps_);
-  return taken;
-}
-
-Eigen::Vector2d StrideJump::ShareAt(double pose_stamp_s) const {
-  const double span_s = stamp_s - stride_start_s;
-  if (!(span_s > 0.0)) return pose_stamp_s >= stamp_s ? jump_m : Eigen::Vector2d::Zero();
-  return std::clamp((pose_stamp_s - stride_start_s) / span_s, 0.0, 1.0) * jump_m;
 }
 
 bool HumanDeadReckoning::PaceKnown() const {
@@ -171,7 +150,7 @@ void HumanDeadReckoning::NoteOverdueTurn(double stamp_s) {
       geometry::NormalizeAngle(heading_.HeadingAt(stamp_s) - last_stride_heading_rad_);
   if (std::abs(turned_rad) <= options_.overdue_turn_rad) return;
   // The prior steps back.
-  NoteJump(last_stride_stamp_s_, stamp_s, -calibration_.scale() * AheadRawM(stamp_s));
+  extrapolation_jumps_m_ -= calibration_.scale() * AheadRawM(stamp_s);
   stride_dropped_ = true;
 }
 

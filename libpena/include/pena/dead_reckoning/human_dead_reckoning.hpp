@@ -45,16 +45,6 @@ struct PosePrior {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
-// One jump of the estimate when a stride report replaced the extrapolated stride in progress, or
-// overdue_turn_rad dropped it: a corrected guess about the stride that began at stride_start_s.
-struct StrideJump {
-  double stride_start_s = 0.0;  // the report the extrapolation ran on from
-  double stamp_s = 0.0;         // when the jump was made
-  Eigen::Vector2d jump_m = Eigen::Vector2d::Zero();  // world frame
-  // The share of the jump a pose taken at pose_stamp_s had accrued (stride walked evenly in time).
-  Eigen::Vector2d ShareAt(double pose_stamp_s) const;
-};
-
 // What happened to the last sample (kNone: used as is).
 enum class DeadReckoningEvent {
   kNone,
@@ -99,9 +89,6 @@ class HumanDeadReckoning {
   // Sum of the jumps made when a report replaced or dropped the extrapolated stride (world frame,
   // m): corrections of a guess about the past, not motion.
   const Eigen::Vector2d& extrapolation_jumps_m() const { return extrapolation_jumps_m_; }
-  // The same jumps one by one since the last call (at most the latest kMaxPendingJumps).
-  std::vector<StrideJump> TakeStrideJumps();
-  static constexpr std::size_t kMaxPendingJumps = 64;
 
   // The scale applied to the stride sensor's lengths (1 until calibrated).
   double stride_scale() const { return calibration_.scale(); }
@@ -126,9 +113,6 @@ class HumanDeadReckoning {
   // stride's pace, at most one stride (raw: before the stride scale).
   Eigen::Vector2d AheadRawM(double stamp_s) const;
   DeadReckoningEvent Count(DeadReckoningEvent event);
-  // Adds a jump made at stamp_s (correcting the stride begun at stride_start_s) to
-  // extrapolation_jumps_m_ and to the pending jumps.
-  void NoteJump(double stride_start_s, double stamp_s, const Eigen::Vector2d& jump_m);
 
   HumanDeadReckoningOptions options_;
   HeadingFilter heading_;
@@ -146,7 +130,6 @@ class HumanDeadReckoning {
   StrideCalibration calibration_;
   Eigen::Vector2d raw_walk_m_ = Eigen::Vector2d::Zero();  // unscaled strides along the heading
   Eigen::Vector2d extrapolation_jumps_m_ = Eigen::Vector2d::Zero();  // see extrapolation_jumps_m()
-  std::vector<StrideJump> pending_jumps_;  // see TakeStrideJumps()
 };
 
 }  // namespace pena::dead_reckoning
