@@ -62,7 +62,7 @@ def main():
     errs = []
     for line in open(rel):
         f = line.split()
-        if len(f) < 8:
+        if len(f) < 8 or f[0].startswith("#"):
             continue
         t1, t2 = float(f[0]), float(f[1])
         m = (float(f[2]), float(f[3]), float(f[7]))

@@ -219,6 +219,7 @@ void WriteSummaryJson(const std::filesystem::path& path, const OdometryArgs& arg
   if (c.refused > 0) out << ", \"refused\": " << c.refused;
   // Only for swept lasers (CARMEN logs): the simulated missions' summaries stay as they were.
   if (c.deskewed > 0) out << ", \"deskewed\": " << c.deskewed;
+  if (c.laser_interlace > 0) out << ", \"laser_interlace\": " << c.laser_interlace;
   out << ", \"no_points\": " << c.no_points << ", \"prior_only\": " << run.prior_only
       << ", \"keyframes\": " << c.keyframes << ", \"wide_searches\": " << c.wide_searches
       << ", \"records_ignored\": " << c.records_ignored;

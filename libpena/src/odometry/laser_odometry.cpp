@@ -146,15 +146,20 @@ std::optional<double> LaserOdometry::Impl::DeskewInterval(const sensors::LaserSc
   return interval_s;
 }
 
-scan_matching::Points2 LaserOdometry::Impl::MidSweepPoints(const sensors::LaserScan& scan,
+scan_matching::Points2 LaserOdometry::Impl::MidSweepPoints(const sensors::LaserScan& logged,
                                                            const OdometryEstimate& out) {
-  const std::optional<double> interval_s = DeskewInterval(scan);
-  if (!interval_s) return UsablePoints(scan, options, 0.0);
+  const std::optional<double> interval_s = DeskewInterval(logged);
+  if (!interval_s) return UsablePoints(logged, options, 0.0);
   ++counts.deskewed;
   const auto turn_rate_rad_s = [&](const geometry::Pose2& world_from_scan) {
     return geometry::NormalizeAngle(world_from_scan.theta_rad - previous_estimate.theta_rad) /
            *interval_s;
   };
+  // The interlace the scans show (interlace_evidence.hpp), not only the one the reader assumed.
+  interlace_evidence.Add(logged, turn_rate_rad_s(out.world_from_prior), options.min_range_m);
+  sensors::LaserScan scan = logged;
+  scan.geometry.interlace = interlace_evidence.Interlace(logged.geometry.interlace);
+  counts.laser_interlace = interlace_evidence.decided().value_or(0);
   scan_matching::Points2 points =
       UsablePoints(scan, options, turn_rate_rad_s(out.world_from_prior));
   // The first pass searches from the prior as the match will; later ones only move the pose

@@ -12,6 +12,7 @@
 #include "frozen_odometry.hpp"
 #include "gate_confirmation.hpp"
 #include "innovation.hpp"
+#include "interlace_evidence.hpp"
 #include "local_map.hpp"
 #include "motion_tracker.hpp"
 #include "pace_check.hpp"
@@ -96,6 +97,7 @@ struct LaserOdometry::Impl {
   // prior-consistency gate's allowance grows with it.
   std::optional<geometry::Pose2> motion_since_keyframe;
   internal::GateConfirmation gate_confirmation;
+  internal::InterlaceEvidence interlace_evidence;  // one sweep or the configured interlace
   internal::FrozenOdometry frozen_odometry;  // wheel odometry only (frozen_odometry_*)
   std::optional<double> last_scan_stamp_s;
   std::optional<double> previous_scan_stamp_s;  // of the scan before the one being added
@@ -117,8 +119,9 @@ struct LaserOdometry::Impl {
   // interval where the stamps are delivery times), or nullopt where deskew does not apply.
   std::optional<double> DeskewInterval(const sensors::LaserScan& scan) const;
   // The scan's usable points, turned to mid-sweep where deskew applies: by the turn since the
-  // previous scan of the prior, then of each match of the points (deskew_match_passes).
-  scan_matching::Points2 MidSweepPoints(const sensors::LaserScan& scan, const OdometryEstimate& out);
+  // previous scan of the prior, then of each match of the points (deskew_match_passes); with
+  // the interlace the evidence supports (interlace_evidence).
+  scan_matching::Points2 MidSweepPoints(const sensors::LaserScan& logged, const OdometryEstimate& out);
   // The best match of `points` around `around` in the current window (current_window) or the
   // base one, or nullopt without a reference or a match scoring min_score.
   std::optional<geometry::Pose2> MatchForDeskew(const scan_matching::Points2& points,

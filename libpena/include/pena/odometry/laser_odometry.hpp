@@ -199,6 +199,9 @@ struct OdometryCounts {
   long pace_held = 0;        // matches that kept the prior along the walk (pace_check_*)
   long deskewed = 0;         // scans turned to mid-sweep (deskew_scans; swept lasers only)
   long records_ignored = 0;  // out of order or not usable (see dead reckoning counts too)
+  // The laser's interlace as its turning scans showed it (1 or the configured one); 0 while
+  // undecided or not in question (one sweep configured): the configured one is used.
+  int laser_interlace = 0;
 };
 
 // The chain for one entity. Not thread-safe; one instance per entity.
