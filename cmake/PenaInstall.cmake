@@ -27,8 +27,10 @@ install(FILES ${PROJECT_BINARY_DIR}/penaConfig.cmake ${PROJECT_BINARY_DIR}/penaC
 
 # Programs for users. The benchmarks (pena-load, pena-traffic, pena-grid-bandwidth) run from the
 # build tree and are not installed.
+include(PenaManPages)
 if(PENA_BUILD_TOOLS)
   install(TARGETS pena RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tools)
+  pena_man_page(pena tools "personal localisation and mapping tools (PeNa)")
 endif()
 set(pena_daemons)
 if(PENA_BUILD_SERVICES)
@@ -42,6 +44,17 @@ if(PENA_BUILD_GATEWAY)
 endif()
 if(pena_daemons)
   install(TARGETS ${pena_daemons} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT services)
+  set(description_pena-entity "the PeNa service of one firefighter or robot")
+  set(description_pena-fusion "the central PeNa fusion service")
+  set(description_pena-sensor-replay "publish a sensor log on the live sensor topics")
+  set(description_pena-monitor "pose age and global-map state at the command post")
+  set(description_pena-console "the command post's live view in a browser")
+  set(description_pena-link-plot "a chart PNG from a series,x,y CSV")
+  set(description_pena-link-gridcost "grid PNG bytes per map update for one entity")
+  set(description_pena-gateway "carry alarms, poses, corrections and line maps across a slow link")
+  foreach(daemon ${pena_daemons})
+    pena_man_page(${daemon} services "${description_${daemon}}")
+  endforeach()
 endif()
 
 include(PenaPackage)

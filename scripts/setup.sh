@@ -16,7 +16,7 @@ packages=(
   libcli11-dev libnanoflann-dev zlib1g-dev libsodium-dev
   libfastrtps-dev fastddsgen
   libboost-dev nlohmann-json3-dev
-  lintian  # the Debian packages' test (tests/packaging)
+  lintian help2man  # the Debian packages: their test (tests/packaging), manual pages
 )
 
 # The console's browser test (tests/console): Debian's chromium (large, so only when wanted) and
