@@ -1,6 +1,9 @@
 # `cmake --install`: libpena as pena::<module> for find_package(pena), its public headers, the
 # tools and daemons into bin/, and the DDS profiles and example configs into share/pena/
-# (the daemons find share/pena/dds relative to their own binary).
+# (the daemons find share/pena/dds relative to their own binary). Every file belongs to one
+# component, the Debian package it goes into (cmake/PenaPackage.cmake): dev (libpena-dev), tools
+# (pena-tools), services (pena-services). The system files of pena-services (systemd units,
+# /etc/pena) have absolute destinations and install only for the package (component system).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -9,9 +12,10 @@ set(PENA_MODULES geometry sensors dead_reckoning scan_matching odometry slam loc
                  grid io eval viz sim pipeline fusion)
 list(TRANSFORM PENA_MODULES PREPEND pena_ OUTPUT_VARIABLE pena_module_targets)
 install(TARGETS ${pena_module_targets} pena_all pena_proto EXPORT penaTargets
-        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/libpena/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(EXPORT penaTargets NAMESPACE pena:: DESTINATION ${PENA_INSTALL_CMAKEDIR})
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/libpena/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        COMPONENT dev)
+install(EXPORT penaTargets NAMESPACE pena:: DESTINATION ${PENA_INSTALL_CMAKEDIR} COMPONENT dev)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/penaConfig.cmake.in
   ${PROJECT_BINARY_DIR}/penaConfig.cmake INSTALL_DESTINATION ${PENA_INSTALL_CMAKEDIR})
 # 0.x: a minor version may break the API.
@@ -19,23 +23,38 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/penaConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/penaConfig.cmake ${PROJECT_BINARY_DIR}/penaConfigVersion.cmake
               ${PROJECT_SOURCE_DIR}/cmake/PenaOpenCV.cmake
-        DESTINATION ${PENA_INSTALL_CMAKEDIR})
+        DESTINATION ${PENA_INSTALL_CMAKEDIR} COMPONENT dev)
 
 # Programs for users. The benchmarks (pena-load, pena-traffic, pena-grid-bandwidth) run from the
 # build tree and are not installed.
-set(pena_programs)
+include(PenaManPages)
 if(PENA_BUILD_TOOLS)
-  list(APPEND pena_programs pena)
+  install(TARGETS pena RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tools)
+  pena_man_page(pena tools "personal localisation and mapping tools (PeNa)")
 endif()
+set(pena_daemons)
 if(PENA_BUILD_SERVICES)
-  list(APPEND pena_programs pena-entity pena-fusion pena-sensor-replay pena-monitor pena-console pena-link-plot
-                            pena-link-gridcost)
+  list(APPEND pena_daemons pena-entity pena-fusion pena-sensor-replay pena-monitor pena-console
+                           pena-link-plot pena-link-gridcost)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/deploy/dds ${PROJECT_SOURCE_DIR}/deploy/config
-          DESTINATION ${CMAKE_INSTALL_DATADIR}/pena)
+          DESTINATION ${CMAKE_INSTALL_DATADIR}/pena COMPONENT services)
 endif()
 if(PENA_BUILD_GATEWAY)
-  list(APPEND pena_programs pena-gateway)
+  list(APPEND pena_daemons pena-gateway)
 endif()
-if(pena_programs)
-  install(TARGETS ${pena_programs} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(pena_daemons)
+  install(TARGETS ${pena_daemons} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT services)
+  set(description_pena-entity "the PeNa service of one firefighter or robot")
+  set(description_pena-fusion "the central PeNa fusion service")
+  set(description_pena-sensor-replay "publish a sensor log on the live sensor topics")
+  set(description_pena-monitor "pose age and global-map state at the command post")
+  set(description_pena-console "the command post's live view in a browser")
+  set(description_pena-link-plot "a chart PNG from a series,x,y CSV")
+  set(description_pena-link-gridcost "grid PNG bytes per map update for one entity")
+  set(description_pena-gateway "carry alarms, poses, corrections and line maps across a slow link")
+  foreach(daemon ${pena_daemons})
+    pena_man_page(${daemon} services "${description_${daemon}}")
+  endforeach()
 endif()
+
+include(PenaPackage)

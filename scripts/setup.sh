@@ -16,6 +16,7 @@ packages=(
   libcli11-dev libnanoflann-dev zlib1g-dev libsodium-dev
   libfastrtps-dev fastddsgen
   libboost-dev nlohmann-json3-dev
+  lintian help2man adduser  # the Debian packages: their test, manual pages, pena-services' postinst
 )
 
 # The console's browser test (tests/console): Debian's chromium (large, so only when wanted) and
