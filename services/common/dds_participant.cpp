@@ -1,6 +1,7 @@
 #include "dds_participant.hpp"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <chrono>
 #include <optional>
 #include <set>
 
@@ -144,11 +145,17 @@ void Participant::WriterPartitions::on_publisher_discovery(
   std::vector<std::string> names;
   for (const auto& name : info.info.m_qos.m_partition.names()) names.push_back(name);
   partitions_[guid] = std::move(names);
+  discovered_.notify_all();
 }
 
 bool Participant::WriterPartitions::Find(const std::array<std::uint8_t, 16>& guid,
-                                         std::vector<std::string>& partitions) {
-  const std::lock_guard<std::mutex> lock(mutex_);
+                                         std::vector<std::string>& partitions, int wait_ms) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  // Fast DDS matches a discovered writer before it reports it to this listener, on another
+  // thread: its first sample can come first. Waiting here holds this reader for that moment,
+  // once per writer.
+  discovered_.wait_for(lock, std::chrono::milliseconds(wait_ms),
+                       [&] { return partitions_.contains(guid); });
   const auto it = partitions_.find(guid);
   if (it == partitions_.end()) return false;
   partitions = it->second;
@@ -167,7 +174,7 @@ bool Participant::AcceptsEntitySample(
     // Our own writer (discovery reports remote ones only).
     if (!own_partition_.empty()) partitions.push_back(own_partition_);
   } else {
-    known = writer_partitions_.Find(guid, partitions);
+    known = writer_partitions_.Find(guid, partitions, 500);
   }
   if (known && (partitions.empty() || (partitions.size() == 1 && partitions[0] == entity_id))) {
     return true;

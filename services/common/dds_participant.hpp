@@ -11,6 +11,7 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <array>
+#include <condition_variable>
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
@@ -107,11 +108,14 @@ class Participant {
    public:
     void on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant* participant,
                                 eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
-    // The partitions of `guid`'s writer; false if it is unknown.
-    bool Find(const std::array<std::uint8_t, 16>& guid, std::vector<std::string>& partitions);
+    // The partitions of `guid`'s writer, waiting up to `wait_ms` for its discovery to be
+    // reported (a sample can overtake that report); false if it is still unknown.
+    bool Find(const std::array<std::uint8_t, 16>& guid, std::vector<std::string>& partitions,
+              int wait_ms);
 
    private:
     std::mutex mutex_;
+    std::condition_variable discovered_;
     std::map<std::array<std::uint8_t, 16>, std::vector<std::string>> partitions_;
   };
 
