@@ -18,14 +18,14 @@
 #   governance.xml      the domain rules, signed as <ID>/governance.p7s
 #   <ID>/               what the device of identity ID carries, and all it carries:
 #       identity_ca.pem identity_crl.pem permissions_ca.pem governance.p7s cert.pem key.pem
-#       permissions.xml permissions.p7s, and dds-profile.xml (the participant profile pena_loopback_secure, for
-#       tools that take only XML profiles)
+#       permissions.xml permissions.p7s, and dds-profile.xml (the participant profile
+#       pena_loopback_secure, for tools that take only XML profiles)
 # Idempotent: CAs, keys and certificates that exist are kept (a device keeps its identity); the
-# governance and every permissions document are signed again, so running it again after adding
-# an id, or with another --days, re-issues the permissions of every identity. Needs openssl.
+# governance and the permissions of every identity named are signed again, so running it again
+# after adding an id, or with another --days, re-issues them. Needs openssl.
 set -euo pipefail
 
-usage() { sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+usage() { sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 
 OPERATORS=operator
 DAYS=30
