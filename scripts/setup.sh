@@ -13,7 +13,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libprotobuf-dev protobuf-compiler libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev libnanoflann-dev zlib1g-dev libsodium-dev
+  libcli11-dev libnanoflann-dev zlib1g-dev libsodium-dev libssl-dev openssl
   libfastrtps-dev fastddsgen
   libboost-dev nlohmann-json3-dev
   lintian help2man adduser  # the Debian packages: their test, manual pages, pena-services' postinst

@@ -16,7 +16,10 @@
 # PENA_ENTITY_CONFIG (an EntityConfig file every pena-entity reads first; its command line wins,
 # e.g. `pipeline { spread_strides: true }`, docs/services.md), PENA_DEMO_CONSOLE (1: serve
 # pena-console, if built, while the team runs, and write OUT/console.png, a headless chromium's
-# screenshot of it at the end; 0: no console), PENA_DEMO_CONSOLE_PORT (8090; on 127.0.0.1).
+# screenshot of it at the end; 0: no console), PENA_DEMO_CONSOLE_PORT (8090; on 127.0.0.1),
+# PENA_DEMO_SECURE (1: DDS Security, every process with its own identity made for the run by
+# deploy/security/make-identities.sh into OUT/security; 0, the default: an open domain;
+# docs/security.md says why).
 # Every process started here is stopped on exit (normal, error, Ctrl-C); nothing is left running.
 set -euo pipefail
 
@@ -27,6 +30,7 @@ RATE=${PENA_DEMO_RATE:-5}
 LOCKSTEP=${PENA_DEMO_LOCKSTEP:-1}
 [[ " ${PENA_FUSION_ARGS:-} " == *" --no-corrections "* ]] && LOCKSTEP=0
 SEED=${PENA_DEMO_SEED:-1}
+SECURE=${PENA_DEMO_SECURE:-0}
 INTERVAL=${PENA_DEMO_CORRECTION_INTERVAL:-2.4}
 PENA=$BUILD/tools/pena/pena
 FUSION_BIN=$BUILD/services/fusion/pena-fusion
@@ -75,6 +79,15 @@ if [[ -z ${PENA_DEMO_MISSION:-} ]]; then
 fi
 MISSION=$(cd "$MISSION" && pwd)
 
+TEAM_IDS=()
+for dir in "$MISSION"/*/; do [[ -f $dir/sensors.penalog ]] && TEAM_IDS+=("$(basename "$dir")"); done
+SEC=$OUT/security
+if ((SECURE)); then
+  # The mission's CAs and one identity per process; kept across runs into the same OUT.
+  bash "$REPO/deploy/security/make-identities.sh" "$SEC" "${TEAM_IDS[@]}" > "$OUT/logs/security.log"
+  echo "== DDS Security: identities for ${TEAM_IDS[*]}, fusion, operator in $SEC"
+fi
+
 cat > "$OUT/fusion.conf" <<CONF
 # pena-fusion config of this demo run (FusionConfig, docs/fusion-service.md)
 state_dir: "fusion/state"
@@ -92,6 +105,7 @@ dds {
   profiles_files: "$DDS_DIR/pena-loopback.xml"
   profiles_files: "$DDS_DIR/pena-qos.xml"
   domain_id: $DOMAIN
+$( ((SECURE)) && echo "  security_dir: \"$SEC/fusion\"")
 }
 CONF
 
@@ -105,7 +119,7 @@ if ((LOCKSTEP)); then
   ENTITY_ARGS=(--await-corrections "$INTERVAL")
 fi
 if [[ -n ${PENA_ENTITY_CONFIG:-} ]]; then ENTITY_ARGS+=(--config "$(realpath "$PENA_ENTITY_CONFIG")"); fi
-echo "== pena-fusion (DDS domain $DOMAIN, loopback only$( ((LOCKSTEP)) && echo ", lockstep"))"
+echo "== pena-fusion (DDS domain $DOMAIN, loopback only$( ((LOCKSTEP)) && echo ", lockstep")$( ((SECURE)) && echo ", DDS Security"))"
 # shellcheck disable=SC2086  # PENA_FUSION_ARGS is a list of options
 "$FUSION_BIN" --config "$OUT/fusion.conf" "${FUSION_ARGS[@]}" ${PENA_FUSION_ARGS:-} \
   > "$OUT/logs/fusion.log" 2>&1 &
@@ -118,7 +132,9 @@ if [[ ${PENA_DEMO_CONSOLE:-1} == 1 && -x $CONSOLE_BIN ]]; then
   rm -f "$OUT/logs/console.port"
   "$CONSOLE_BIN" --port "${PENA_DEMO_CONSOLE_PORT:-8090}" --port-file "$OUT/logs/console.port" \
     --domain "$DOMAIN" --profiles-file "$DDS_DIR/pena-loopback.xml" \
-    --profiles-file "$DDS_DIR/pena-qos.xml" > "$OUT/logs/console.log" 2>&1 &
+    --profiles-file "$DDS_DIR/pena-qos.xml" \
+    $( ((SECURE)) && echo "--profiles-file $SEC/operator/dds-profile.xml --profile pena_loopback_secure") \
+    > "$OUT/logs/console.log" 2>&1 &
   PIDS+=("$!")
   for _ in $(seq 50); do [[ -s $OUT/logs/console.port ]] && break; sleep 0.1; done
   if [[ -s $OUT/logs/console.port ]]; then
@@ -138,7 +154,8 @@ for dir in "$MISSION"/*/; do
   rm -rf "${OUT:?}/$id"
   "$ENTITY_BIN" --input "$dir" --rate "$RATE" --out "$OUT/$id" --domain "$DOMAIN" \
     --profiles-file "$DDS_DIR/pena-loopback.xml" --profiles-file "$DDS_DIR/pena-qos.xml" \
-    --wait-for-readers 20 --linger 5 "${ENTITY_ARGS[@]}" > "$OUT/logs/$id.log" 2>&1 &
+    --wait-for-readers 20 --linger 5 "${ENTITY_ARGS[@]}" \
+    $( ((SECURE)) && echo "--security $SEC/$id") > "$OUT/logs/$id.log" 2>&1 &
   ENTITY_PIDS+=("$!")
   PIDS+=("$!")
 done

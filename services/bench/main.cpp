@@ -2,7 +2,9 @@
 // on loopback DDS, publishes N simulated entities' poses, reference scans, line-map deltas and
 // status at mission speed (4 Hz scans), and prints correction latency (reference scan sent ->
 // correction received) per window, fusion's CPU and memory, and the totals. A benchmark: it
-// reports, it does not judge.
+// reports, it does not judge. --security DIR (deploy/security/make-identities.sh output) runs
+// it secured: pena-fusion as DIR/fusion, the simulated entities through one participant with
+// DIR/gateway's identity (it may write every entity's data, as a gateway relaying a team does).
 #include <CLI/CLI.hpp>
 #include <fcntl.h>
 #include <signal.h>
@@ -28,7 +30,7 @@ using namespace pena::services;
 using namespace pena::services::bench;
 
 struct Cli {
-  std::string mission, fusion = PENA_FUSION_BIN, work = "/tmp/pena-load";
+  std::string mission, fusion = PENA_FUSION_BIN, work = "/tmp/pena-load", security;
   int domain = 77;
   double duration_s = 60.0;
   bool plan = true;
@@ -38,11 +40,12 @@ struct Cli {
 
 std::filesystem::path DdsDir() { return std::filesystem::path(PENA_SOURCE_DIR) / "deploy" / "dds"; }
 
-DdsOptions Loopback(int domain) {
+DdsOptions Loopback(int domain, const std::string& security) {
   setenv("FASTRTPS_DEFAULT_PROFILES_FILE", (DdsDir() / "pena-loopback.xml").c_str(), 1);
   DdsOptions options;
   options.profiles_files = {DdsDir() / "pena-loopback.xml", DdsDir() / "pena-qos.xml"};
   options.domain_id = domain;
+  if (!security.empty()) options.security_dir = std::filesystem::path(security) / "gateway";
   return options;
 }
 
@@ -61,7 +64,12 @@ std::filesystem::path WriteFusionConfig(const Cli& cli) {
   if (cli.plan && std::filesystem::exists(plan)) out << "plan: \"" << plan.string() << "\"\n";
   out << "dds { profiles_files: \"" << (DdsDir() / "pena-loopback.xml").string() << "\"\n"
       << "  profiles_files: \"" << (DdsDir() / "pena-qos.xml").string() << "\"\n"
-      << "  participant_profile: \"pena_loopback\" domain_id: " << cli.domain << " }\n"
+      << "  participant_profile: \"pena_loopback\" domain_id: " << cli.domain;
+  if (!cli.security.empty()) {
+    out << "\n  security_dir: \"" << (std::filesystem::absolute(cli.security) / "fusion").string()
+        << "\"";
+  }
+  out << " }\n"
       << "log { level: \"warn\" }\n";
   return path;
 }
@@ -131,7 +139,8 @@ void PrintFusionCounters(const std::filesystem::path& stats) {
 }
 
 int Run(const Cli& cli) {
-  const DdsOptions dds = Loopback(cli.domain);
+  const DdsOptions dds = Loopback(cli.domain, cli.security);
+  std::printf("DDS Security: %s\n", cli.security.empty() ? "off" : "on");
   std::vector<SourceStream> sources = ComputeSources(cli);
   const pid_t fusion = SpawnFusion(cli, WriteFusionConfig(cli));
   if (fusion < 0) {
@@ -182,6 +191,8 @@ int main(int argc, char** argv) {
   app.add_option("--work", cli.work, "Scratch directory (fusion config, state, log)")
       ->capture_default_str();
   app.add_option("--domain", cli.domain, "DDS domain id")->capture_default_str();
+  app.add_option("--security", cli.security,
+                 "DDS Security: the identities directory of deploy/security/make-identities.sh");
   app.add_flag("!--no-plan", cli.plan, "Do not give fusion the mission's apriori.csv");
   app.add_option("--fusion-arg", cli.fusion_args,
                  "An argument passed on to pena-fusion (repeatable), e.g. "

@@ -114,7 +114,8 @@ class Reader {
   // Throws DdsError naming topic and profile.
   Reader(Participant& participant, const TopicSpec& spec, SampleCallback on_sample,
          LivelinessCallback on_liveliness = {})
-      : participant_(participant), listener_(std::move(on_sample), std::move(on_liveliness)) {
+      : participant_(participant),
+        listener_(participant, std::move(on_sample), std::move(on_liveliness)) {
     reader_ = participant.subscriber()->create_datareader_with_profile(
         participant.GetTopic<PubSubType>(spec.name), spec.reader_profile, &listener_);
     if (reader_ == nullptr) {
@@ -139,14 +140,16 @@ class Reader {
  private:
   class Listener : public eprosima::fastdds::dds::DataReaderListener {
    public:
-    Listener(SampleCallback on_sample, LivelinessCallback on_liveliness)
-        : on_sample_(std::move(on_sample)), on_liveliness_(std::move(on_liveliness)) {}
+    Listener(Participant& participant, SampleCallback on_sample, LivelinessCallback on_liveliness)
+        : participant_(participant),
+          on_sample_(std::move(on_sample)),
+          on_liveliness_(std::move(on_liveliness)) {}
 
     void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
       Sample sample;
       eprosima::fastdds::dds::SampleInfo info;
       while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-        if (info.valid_data) {
+        if (info.valid_data && FromItsEntity(sample, info)) {
           const SampleMeta meta{info.source_timestamp.to_ns(), NowNs(),
                                 ToHandle(info.publication_handle)};
           on_sample_(std::move(sample), meta);
@@ -164,6 +167,18 @@ class Reader {
     }
 
    private:
+    // A sample keyed by an entity comes from that entity's writer (Participant::
+    // AcceptsEntitySample); samples without an entity_id are not checked here.
+    bool FromItsEntity(const Sample& sample, const eprosima::fastdds::dds::SampleInfo& info) {
+      if constexpr (requires { sample.entity_id().to_string(); }) {
+        return participant_.AcceptsEntitySample(info.publication_handle,
+                                                sample.entity_id().to_string());
+      } else {
+        return true;
+      }
+    }
+
+    Participant& participant_;
     SampleCallback on_sample_;
     LivelinessCallback on_liveliness_;
   };

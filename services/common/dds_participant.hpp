@@ -5,10 +5,15 @@
 // every contained entity and then the participant.
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
+#include <array>
+#include <condition_variable>
+#include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -32,6 +37,15 @@ struct DdsOptions {
   std::string participant_profile = "pena_loopback";
   // DDS domain; tests use their own so parallel runs do not meet.
   int domain_id = 0;
+  // DDS Security: this participant's identity directory (deploy/security/make-identities.sh;
+  // docs/security.md). Empty: none configured here; the participant is then open unless its XML
+  // profile configures security itself.
+  std::filesystem::path security_dir;
+  // The partition this participant's writers publish in; empty: the default partition, or with
+  // own_partition the secured participant's own (its certificate's common name). A secured
+  // entity writes in the partition of its id, the only one its permissions allow.
+  std::string publish_partition;
+  bool own_partition = false;
 };
 
 // Where the default profile files live: $PENA_DDS_DIR when set, else share/pena/dds beside an
@@ -48,7 +62,10 @@ void LoadProfilesFile(const std::filesystem::path& path);
 // A participant with its publisher, subscriber and topics.
 class Participant {
  public:
-  // Loads the profile files, then creates the participant from participant_profile.
+  // Loads the profile files, then creates the participant from participant_profile, secured
+  // when options.security_dir or the profile configures DDS Security. The security files are
+  // checked first (CheckSecurityFiles): a missing or invalid one throws DdsError naming it; it
+  // never falls back to an open participant.
   Participant(const DdsOptions& options, const std::string& name);
   ~Participant();
   Participant(const Participant&) = delete;
@@ -65,12 +82,49 @@ class Participant {
   eprosima::fastdds::dds::Publisher* publisher() const { return publisher_; }
   eprosima::fastdds::dds::Subscriber* subscriber() const { return subscriber_; }
   const std::string& name() const { return name_; }
+  // The certificate subject of a secured participant (RFC 2253); empty when open.
+  const std::string& identity() const { return identity_; }
+  // Its certificate's common name (an entity's id, "fusion", ...); empty when open.
+  const std::string& common_name() const { return common_name_; }
+  bool secured() const { return !identity_.empty(); }
+
+  // Whether a sample about entity `entity_id` (its key) from writer `publication` is taken.
+  // Open: always. Secured: only if that writer publishes in the default partition, which no
+  // entity identity may, or in exactly the partition `entity_id`, the only one that entity's
+  // permissions allow (docs/security.md). DDS Security checks which partitions a writer may use;
+  // this checks that a sample's key names the writer's own entity. Refusals are counted and the
+  // first few logged.
+  bool AcceptsEntitySample(const eprosima::fastrtps::rtps::InstanceHandle_t& publication,
+                           const std::string& entity_id);
+  // Samples refused by AcceptsEntitySample.
+  std::uint64_t refused_samples() const { return refused_samples_.load(); }
 
  private:
   eprosima::fastdds::dds::Topic* GetTopic(const std::string& name,
                                           eprosima::fastdds::dds::TypeSupport type);
 
+  // Records each remote writer's partitions as discovery reports them.
+  class WriterPartitions : public eprosima::fastdds::dds::DomainParticipantListener {
+   public:
+    void on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant* participant,
+                                eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
+    // The partitions of `guid`'s writer, waiting up to `wait_ms` for its discovery to be
+    // reported (a sample can overtake that report); false if it is still unknown.
+    bool Find(const std::array<std::uint8_t, 16>& guid, std::vector<std::string>& partitions,
+              int wait_ms);
+
+   private:
+    std::mutex mutex_;
+    std::condition_variable discovered_;
+    std::map<std::array<std::uint8_t, 16>, std::vector<std::string>> partitions_;
+  };
+
   std::string name_;
+  WriterPartitions writer_partitions_;
+  std::atomic<std::uint64_t> refused_samples_{0};
+  std::string own_partition_;
+  std::string identity_;
+  std::string common_name_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

@@ -43,6 +43,7 @@ DdsOptions DdsFromConfig(const config::DdsConfig& config, const std::filesystem:
   if (out.profiles_files.empty()) out.profiles_files = DefaultProfilesFiles();
   out.participant_profile = config.participant_profile();
   out.domain_id = config.domain_id();
+  if (config.has_security_dir()) out.security_dir = ResolvePath(path, config.security_dir());
   return out;
 }
 

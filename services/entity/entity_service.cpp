@@ -26,13 +26,20 @@ constexpr std::int64_t kAwaitTimeoutNs = 15'000'000'000;
 
 std::int64_t SecondsToNs(double seconds) { return static_cast<std::int64_t>(seconds * 1e9); }
 
+// A secured entity writes in the partition of its id, the only one its permissions allow
+// (docs/security.md); an open one in the default partition.
+DdsOptions InOwnPartition(DdsOptions dds) {
+  dds.own_partition = true;
+  return dds;
+}
+
 }  // namespace
 
 EntityService::EntityService(EntityServiceOptions options)
     : options_(std::move(options)),
       source_(IsLiveInput(options_.input) ? nullptr : io::OpenLog(options_.input, options_.read)),
       gate_(options_.corrections),
-      participant_(options_.dds, "pena-entity"),
+      participant_(InOwnPartition(options_.dds), "pena-entity"),
       pose_writer_(participant_, topics::kPose),
       status_writer_(participant_, topics::kStatus),
       delta_writer_(participant_, topics::kLineMapDelta),
@@ -105,6 +112,10 @@ void EntityService::ReadAhead() {
   const io::LogDescription& description = source_->description();
   kind_ = log_start.kind;
   entity_id_ = std::move(log_start.entity_id);
+  if (participant_.secured() && entity_id_ != participant_.common_name()) {
+    throw DdsError("entity id '" + entity_id_ + "' is not the identity's (" +
+                   participant_.identity() + "): an entity publishes only as itself");
+  }
   pena_dds::EntityPose probe;
   SetBounded(probe.entity_id(), entity_id_, "entity_id");
   // The live input states a known start as a ground-truth record too (LiveSensorSource).

@@ -21,6 +21,7 @@ using pena::services::EntityServiceOptions;
 struct Overrides {
   std::string config, input, entity_id, kind, output_dir, participant_profile, log_level, plan;
   std::vector<std::string> profiles_files;
+  std::string security_dir;
   std::optional<double> rate, wait_for_readers_s, linger_s, await_corrections_s;
   std::optional<double> reorder_window_s, idle_timeout_s, correction_max_chi2;
   std::optional<int> domain_id;
@@ -59,6 +60,8 @@ void AddOptions(CLI::App& app, Overrides& o) {
   app.add_option("--domain", o.domain_id, "DDS domain id (0..232)");
   app.add_option("--profile", o.participant_profile, "Participant profile (default pena_loopback)");
   app.add_option("--profiles-file", o.profiles_files, "DDS XML profile file (repeatable)");
+  app.add_option("--security", o.security_dir,
+                 "DDS Security identity directory (deploy/security/make-identities.sh); default: none, an open participant");
   app.add_option("--wait-for-readers", o.wait_for_readers_s,
                  "Wait up to this many seconds for the fusion's readers before starting");
   app.add_option("--linger", o.linger_s, "Seconds to wait for acknowledgements at the end");
@@ -89,6 +92,7 @@ EntityServiceOptions BuildOptions(const Overrides& o) {
   if (o.start_unknown) options.start_unknown = true;
   if (o.domain_id) options.dds.domain_id = *o.domain_id;
   if (!o.participant_profile.empty()) options.dds.participant_profile = o.participant_profile;
+  if (!o.security_dir.empty()) options.dds.security_dir = o.security_dir;
   if (!o.profiles_files.empty()) {
     options.dds.profiles_files.assign(o.profiles_files.begin(), o.profiles_files.end());
   }

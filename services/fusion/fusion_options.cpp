@@ -19,6 +19,7 @@ DdsOptions DdsFromConfig(const config::DdsConfig& config, const std::filesystem:
   out.participant_profile = config.has_participant_profile() ? config.participant_profile()
                                                               : kFusionParticipantProfile;
   out.domain_id = config.domain_id();
+  if (config.has_security_dir()) out.security_dir = ResolvePath(path, config.security_dir());
   return out;
 }
 

@@ -24,6 +24,7 @@ using pena::services::FusionServiceOptions;
 struct Overrides {
   std::string config, state_dir, plan, output_dir, participant_profile, log_level;
   std::vector<std::string> profiles_files;
+  std::string security_dir;
   std::optional<int> domain_id;
   bool no_corrections = false;
   bool raw_corrections = false;
@@ -61,6 +62,8 @@ void AddOptions(CLI::App& app, Overrides& o) {
                  "Participant profile (default pena_loopback_udp: pena_loopback without shared "
                  "memory)");
   app.add_option("--profiles-file", o.profiles_files, "DDS XML profile file (repeatable)");
+  app.add_option("--security", o.security_dir,
+                 "DDS Security identity directory (deploy/security/make-identities.sh); default: none, an open participant");
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error");
 }
 
@@ -82,6 +85,7 @@ FusionServiceOptions BuildOptions(const Overrides& o) {
   if (o.lockstep_stall_s) options.lockstep_order.stall_s = *o.lockstep_stall_s;
   if (o.domain_id) options.dds.domain_id = *o.domain_id;
   if (!o.participant_profile.empty()) options.dds.participant_profile = o.participant_profile;
+  if (!o.security_dir.empty()) options.dds.security_dir = o.security_dir;
   if (!o.profiles_files.empty()) {
     options.dds.profiles_files.assign(o.profiles_files.begin(), o.profiles_files.end());
   }

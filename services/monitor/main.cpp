@@ -21,11 +21,14 @@ int main(int argc, char** argv) {
   pena::services::MonitorOptions options;
   std::string output_dir, participant_profile, digest_file, log_level = "info";
   std::vector<std::string> profiles_files;
+  std::string security_dir;
   app.add_option("--out", output_dir, "Output directory: poses.csv, map.csv, global_map.csv");
   app.add_option("--duration", options.duration_s, "Wall seconds to run (0: until a signal)");
   app.add_option("--domain", options.dds.domain_id, "DDS domain id (0..232)");
   app.add_option("--profile", participant_profile, "Participant profile (default pena_loopback)");
   app.add_option("--profiles-file", profiles_files, "DDS XML profile file (repeatable)");
+  app.add_option("--security", security_dir,
+                 "DDS Security identity directory (deploy/security/make-identities.sh); default: none, an open participant");
   app.add_option("--digest", digest_file, "Print the map digest of this line CSV and exit");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error");
   CLI11_PARSE(app, argc, argv);
@@ -39,6 +42,7 @@ int main(int argc, char** argv) {
     pena::services::SetupLogging("pena-monitor", log_level, {});
     options.output_dir = output_dir;
     if (!participant_profile.empty()) options.dds.participant_profile = participant_profile;
+    options.dds.security_dir = security_dir;
     options.dds.profiles_files =
         profiles_files.empty()
             ? pena::services::DefaultProfilesFiles()

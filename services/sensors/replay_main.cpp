@@ -17,6 +17,7 @@ using pena::services::SensorReplayOptions;
 struct Arguments {
   std::string input, entity_id, kind, participant_profile, log_level = "info";
   std::vector<std::string> profiles_files;
+  std::string security_dir;
   double rate = 1.0, wait_for_readers_s = 10.0, linger_s = 5.0;
   int domain_id = 0;
 };
@@ -31,6 +32,8 @@ void AddOptions(CLI::App& app, Arguments& a) {
   app.add_option("--domain", a.domain_id, "DDS domain id (0..232)");
   app.add_option("--profile", a.participant_profile, "Participant profile (default pena_loopback)");
   app.add_option("--profiles-file", a.profiles_files, "DDS XML profile file (repeatable)");
+  app.add_option("--security", a.security_dir,
+                 "DDS Security identity directory of the entity (deploy/security/make-identities.sh); default: none");
   app.add_option("--wait-for-readers", a.wait_for_readers_s,
                  "Wait up to this many seconds for a reader on every sensor topic");
   app.add_option("--linger", a.linger_s, "Seconds to wait for acknowledgements");
@@ -51,6 +54,9 @@ SensorReplayOptions BuildOptions(const Arguments& a) {
   options.linger_s = a.linger_s;
   options.dds.domain_id = a.domain_id;
   if (!a.participant_profile.empty()) options.dds.participant_profile = a.participant_profile;
+  options.dds.security_dir = a.security_dir;
+  // Secured, the sensors write in the entity's partition like the entity itself.
+  options.dds.own_partition = true;
   if (a.profiles_files.empty()) {
     options.dds.profiles_files = pena::services::DefaultProfilesFiles();
   } else {
