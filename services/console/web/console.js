@@ -71,6 +71,7 @@ function receive(m) {
     for (const e of m.entities) upsertEntity(e);
     state.mapVersion = m.map.version;
     for (const s of m.map.segments) state.segments.set(s[0], s.slice(1));
+    mapChanged = true;
     for (const a of m.annotations) state.annotations.set(a.id, a);
     state.corrections = m.corrections.slice();
     state.links = (m.links || []).slice();
@@ -91,6 +92,7 @@ function receive(m) {
       state.mapVersion = m.map.version;
       for (const s of m.map.upsert) state.segments.set(s[0], s.slice(1));
       for (const id of m.map.remove) state.segments.delete(id);
+      mapChanged = true;
     }
     for (const a of m.annotations || []) state.annotations.set(a.id, a);
     for (const c of m.corrections || []) {
@@ -350,23 +352,48 @@ function draw() {
   drawLegend();
 }
 
-function drawMap() {
-  ctx.lineCap = 'round';
+// The walls are drawn into a layer three views wide and high around the view, at the view's
+// scale; panning blits it, and it is drawn again only when the view leaves it, the scale
+// changes or the map changes (a map of 10,000 walls then pans at the display's frame rate).
+const wallLayer = { canvas: document.createElement('canvas'), scale: 0, x0: 0, y0: 0, key: '' };
+let mapChanged = true;
+
+function drawWalls(c, originX, originY) {
+  c.lineCap = 'round';
   for (const observed of [0, 1]) {
-    ctx.beginPath();
+    c.beginPath();
     for (const s of state.segments.values()) {
       if (s[4] !== observed) continue;
-      const [ax, ay] = toScreen(s[0], s[1]);
-      const [bx, by] = toScreen(s[2], s[3]);
-      ctx.moveTo(ax, ay);
-      ctx.lineTo(bx, by);
+      c.moveTo((s[0] - originX) * view.scale, (originY - s[1]) * view.scale);
+      c.lineTo((s[2] - originX) * view.scale, (originY - s[3]) * view.scale);
     }
-    ctx.strokeStyle = observed ? '#111111' : '#9e9e9e';
-    ctx.lineWidth = observed ? 2.2 : 1.6;
-    ctx.setLineDash(observed ? [] : [6, 4]);
-    ctx.stroke();
+    c.strokeStyle = observed ? '#111111' : '#9e9e9e';
+    c.lineWidth = observed ? 2.2 : 1.6;
+    c.setLineDash(observed ? [] : [6, 4]);
+    c.stroke();
   }
-  ctx.setLineDash([]);
+  c.setLineDash([]);
+}
+
+function drawMap() {
+  const w = canvas.width, h = canvas.height;
+  // World coordinates of the view's top-left corner.
+  const left = view.cx - w / 2 / view.scale, top = view.cy + h / 2 / view.scale;
+  const layer = wallLayer;
+  const inside = layer.scale === view.scale && left >= layer.x0 && top <= layer.y0 &&
+                 left + w / view.scale <= layer.x0 + layer.canvas.width / view.scale &&
+                 top - h / view.scale >= layer.y0 - layer.canvas.height / view.scale;
+  if (mapChanged || !inside) {
+    layer.canvas.width = 3 * w;
+    layer.canvas.height = 3 * h;
+    layer.scale = view.scale;
+    layer.x0 = left - w / view.scale;
+    layer.y0 = top + h / view.scale;
+    drawWalls(layer.canvas.getContext('2d'), layer.x0, layer.y0);
+    mapChanged = false;
+  }
+  const dx = Math.round((layer.x0 - left) * view.scale), dy = Math.round((top - layer.y0) * view.scale);
+  ctx.drawImage(layer.canvas, dx, dy);
 }
 
 function drawTrail(e) {
@@ -718,7 +745,7 @@ window.addEventListener('resize', resize);
 
 window.penaConsole = { state, view, pick, send, toScreen, toWorld, startRotation, startTranslation, startMark, startArea,
                        startMove, retract, undo, lastInForce, pickPoint, closeArea, fit, exportSvg, exportPng,
-                       ellipseOf, redraw: () => { draw(); dirty = false; } };
+                       ellipseOf, redraw: () => { draw(); dirty = false; }, mapChanged: () => { mapChanged = true; } };
 resize();
 connect();
 requestAnimationFrame(frame);
