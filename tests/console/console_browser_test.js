@@ -18,6 +18,7 @@
 'use strict';
 
 const fs = require('fs');
+const net = require('net');
 const path = require('path');
 const { launchChromium } = require('./chromium');
 
@@ -190,6 +191,8 @@ async function run(browser, o) {
   if (corrections !== 0) fail(`${corrections} corrections after hostile input (expected none)`);
   console.log(`hostile input: ${hostile.length + 1} messages refused, nothing applied`);
 
+  await stalledBrowsers(page, o);
+
   // ---- 3. a second page and a reload hold the same picture ----
   const other = await browser.newPage();
   await other.goto(o.url, { waitUntil: 'load' });
@@ -207,6 +210,38 @@ async function run(browser, o) {
   await exports(page, o);
   if (pageErrors.length) fail(`errors in the page: ${pageErrors.join('; ')}`);
   console.log('PASS');
+}
+
+// Browsers that stop reading, or vanish without closing, hold nobody back: while three such
+// connections are open (one never reads, one vanishes at once, one vanishes mid-stream), the
+// page keeps getting its deltas at the tick rate.
+async function stalledBrowsers(page, o) {
+  const url = new URL(o.url);
+  const handshake = `GET /ws HTTP/1.1\r\nHost: ${url.host}\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n` +
+                    'Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n';
+  const open = () => new Promise((resolve, reject) => {
+    const socket = net.connect(Number(url.port), url.hostname, () => { socket.write(handshake); resolve(socket); });
+    socket.on('error', reject);
+  });
+  const deltas = () => page.evaluate(() => window.penaConsole.state.deltas);
+  const b0 = await deltas(), tb = Date.now();
+  await sleep(3000);
+  const before = await deltas();
+  const t0 = Date.now();
+  const baseline = (before - b0) / ((t0 - tb) / 1000);
+  const stalled = await open();
+  stalled.pause();  // never reads: the console's writes to it back up
+  (await open()).destroy();  // gone before the snapshot
+  const vanishing = await open();
+  await sleep(1000);
+  vanishing.resetAndDestroy();  // gone mid-stream, without a close frame (TCP reset)
+  await sleep(5000);
+  const got = await deltas() - before;
+  const seconds = (Date.now() - t0) / 1000;
+  stalled.destroy();
+  console.log(`stalled and vanished browsers: the page got ${(got / seconds).toFixed(1)} deltas/s meanwhile, ` +
+              `${baseline.toFixed(1)} deltas/s just before (tick 50 ms)`);
+  if (got / seconds < 0.6 * baseline) fail(`the page got ${got} deltas in ${seconds.toFixed(1)} s beside a stalled browser`);
 }
 
 // The page's exports hold the picture: the SVG has every wall and every entity where the canvas
