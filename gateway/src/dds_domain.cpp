@@ -50,6 +50,14 @@ DdsDomain::Impl::Impl(DdsDomainOptions domain_options)
           return std::nullopt;
         });
   }
+  if (sends(DdsClass::kOperatorCorrection)) {
+    operator_reader = MakeReader<pena_dds::OperatorCorrectionPubSubType>(
+        topics::kOperatorCorrection, [](pena_dds::OperatorCorrection& s, const SampleMeta& m, std::string* error) -> std::optional<Event> {
+          services::CheckSchemaVersion(s.schema_version(), "OperatorCorrection");
+          if (auto c = OperatorCorrectionFromDds(s, SourceS(m), error)) return *c;
+          return std::nullopt;
+        });
+  }
   if (sends(DdsClass::kEntityMap)) {
     entity_delta_reader = MakeReader<pena_dds::LineMapDeltaPubSubType>(
         topics::kLineMapDelta, [](pena_dds::LineMapDelta& s, const SampleMeta&, std::string*) -> std::optional<Event> {
@@ -91,6 +99,10 @@ void DdsDomain::Impl::CreateWriters(const F& publishes) {
   if (publishes(DdsClass::kCorrection)) {
     correction_writer = MakeWriter<pena_dds::CorrectionPubSubType>(topics::kCorrection);
   }
+  if (publishes(DdsClass::kOperatorCorrection)) {
+    operator_writer = MakeWriter<pena_dds::OperatorCorrectionPubSubType>(topics::kOperatorCorrection);
+  }
+  health_writer = std::make_unique<services::Writer<pena_dds::LinkHealthPubSubType>>(participant, topics::kLinkHealth);
   if (publishes(DdsClass::kEntityMap)) {
     entity_delta_writer = MakeWriter<pena_dds::LineMapDeltaPubSubType>(topics::kLineMapDelta);
     entity_snapshot_writer = MakeWriter<pena_dds::LineMapSnapshotPubSubType>(topics::kLineMapSnapshot);
@@ -171,6 +183,13 @@ double DdsDomain::last_sent_map_change_s() const { return impl_->last_sent_chang
 DdsDomainStats DdsDomain::stats() const {
   std::lock_guard<std::mutex> lock(impl_->mutex);
   return impl_->stats;
+}
+
+void DdsDomain::PublishLinkHealth(const pena_dds::LinkHealth& health) {
+  pena_dds::LinkHealth sample = health;
+  if (!impl_->health_writer->Write(sample)) {
+    spdlog::warn("{}: link health not published", impl_->options.name);
+  }
 }
 
 int DdsDomain::matched_readers() const { return impl_->MatchedReaders(); }

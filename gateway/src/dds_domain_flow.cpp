@@ -27,6 +27,17 @@ std::string ContentKey(const Annotation& annotation) {
   return key.str();
 }
 
+// An operator correction's content: pena-fusion's answer (applied, refusal) differs from the
+// operator's sample and crosses; a relay of the same content does not.
+std::string ContentKey(const OperatorCorrection& c) {
+  std::ostringstream key;
+  key.precision(17);
+  key << c.kind << ' ' << c.entity << ' ' << c.mission_stamp_s << ' ' << c.origin_x_m << ' '
+      << c.origin_y_m << ' ' << c.wrong_x_m << ' ' << c.wrong_y_m << ' ' << c.correct_x_m << ' '
+      << c.correct_y_m << ' ' << c.applied << ' ' << c.refusal << ' ' << c.undoes_id;
+  return key.str();
+}
+
 std::string AnnotationKey(const Annotation& annotation) {
   return annotation.entity + "/" + std::to_string(annotation.id >> kAnnotationIdShift);
 }
@@ -35,7 +46,7 @@ std::string AnnotationKey(const Annotation& annotation) {
 
 std::optional<DdsClass> ParseDdsClass(const std::string& name) {
   for (DdsClass c : {DdsClass::kPose, DdsClass::kEntityMap, DdsClass::kGlobalMap,
-                     DdsClass::kAnnotation, DdsClass::kCorrection}) {
+                     DdsClass::kAnnotation, DdsClass::kCorrection, DdsClass::kOperatorCorrection}) {
     if (name == ToString(c)) return c;
   }
   return std::nullopt;
@@ -48,15 +59,21 @@ const char* ToString(DdsClass dds_class) {
     case DdsClass::kGlobalMap: return "global_map";
     case DdsClass::kAnnotation: return "annotation";
     case DdsClass::kCorrection: return "correction";
+    case DdsClass::kOperatorCorrection: return "operator_correction";
   }
   return "?";
 }
 
 std::optional<DdsRole> ParseDdsRole(const std::string& name) {
   using C = DdsClass;
-  if (name == "building") return DdsRole{{C::kPose, C::kGlobalMap, C::kAnnotation}, {C::kAnnotation}};
+  // Operator corrections go in from the command post; pena-fusion's answers come back out.
+  if (name == "building") {
+    return DdsRole{{C::kPose, C::kGlobalMap, C::kAnnotation, C::kOperatorCorrection},
+                   {C::kAnnotation, C::kOperatorCorrection}};
+  }
   if (name == "command-post") {
-    return DdsRole{{C::kAnnotation}, {C::kPose, C::kGlobalMap, C::kAnnotation}};
+    return DdsRole{{C::kAnnotation, C::kOperatorCorrection},
+                   {C::kPose, C::kGlobalMap, C::kAnnotation, C::kOperatorCorrection}};
   }
   if (name == "entities") {
     return DdsRole{{C::kPose, C::kEntityMap, C::kAnnotation}, {C::kAnnotation, C::kCorrection}};
@@ -77,6 +94,13 @@ void DdsDomain::Impl::Handle(Event event, std::vector<DomainItem>* out) {
                    if (seen == content) return;  // a relay of what already crossed
                    seen = content;
                    out->push_back(std::move(annotation));
+                 },
+                 [&](OperatorCorrection& correction) {
+                   std::string& seen = operator_seen[correction.correction_id];
+                   const std::string content = ContentKey(correction);
+                   if (seen == content) return;  // a relay of what already crossed
+                   seen = content;
+                   out->push_back(std::move(correction));
                  },
                  [&](MapIn& map_in) { HandleMap(std::move(map_in), out); },
                  [&](SyncIn& sync) { HandleSync(sync); },
@@ -184,6 +208,12 @@ bool DdsDomain::Impl::Publish(const DomainItem& item) {
             pena_dds::Correction sample = CorrectionToDds(correction);
             return correction_writer->Write(sample, correction.stamp_s);
           },
+          [&](const OperatorCorrection& correction) {
+            if (!operator_writer) return false;
+            pena_dds::OperatorCorrection sample = OperatorCorrectionToDds(correction);
+            operator_seen[correction.correction_id] = ContentKey(correction);
+            return operator_writer->Write(sample, correction.stamp_s);
+          },
           [&](const MapChange& change) { return PublishMap(change); },
       },
       item);
@@ -218,6 +248,7 @@ int DdsDomain::Impl::MatchedReaders() const {
   if (pose_reader) matched += pose_reader->matched();
   if (annotation_reader) matched += annotation_reader->matched();
   if (correction_reader) matched += correction_reader->matched();
+  if (operator_reader) matched += operator_reader->matched();
   if (entity_delta_reader) matched += entity_delta_reader->matched();
   if (global_delta_reader) matched += global_delta_reader->matched();
   return matched;
@@ -228,6 +259,7 @@ int DdsDomain::Impl::MatchedWriters() const {
   if (pose_writer) matched += pose_writer->matched();
   if (annotation_writer) matched += annotation_writer->matched();
   if (correction_writer) matched += correction_writer->matched();
+  if (operator_writer) matched += operator_writer->matched();
   if (entity_delta_writer) matched += entity_delta_writer->matched();
   if (global_delta_writer) matched += global_delta_writer->matched();
   return matched;

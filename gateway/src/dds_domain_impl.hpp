@@ -32,7 +32,7 @@ struct SyncIn {
   std::string target;
   std::uint64_t have_version = 0;
 };
-using Event = std::variant<PoseUpdate, Annotation, Correction, MapIn, SyncIn>;
+using Event = std::variant<PoseUpdate, Annotation, Correction, MapIn, SyncIn, OperatorCorrection>;
 
 struct DdsDomain::Impl {
   explicit Impl(DdsDomainOptions domain_options);
@@ -94,6 +94,7 @@ struct DdsDomain::Impl {
   std::map<std::string, PendingSnapshot> pending_snapshots;
   std::map<std::string, double> last_sync_request_s;
   std::map<std::string, std::string> annotations_seen;  // link id text -> content sent/received
+  std::map<std::string, std::string> operator_seen;     // correction_id -> content sent/received
   std::map<std::string, std::uint64_t> pose_seq;
   double last_sent_change_s = 0.0;
 
@@ -101,6 +102,7 @@ struct DdsDomain::Impl {
   std::unique_ptr<services::Reader<pena_dds::EntityPosePubSubType>> pose_reader;
   std::unique_ptr<services::Reader<pena_dds::AnnotationPubSubType>> annotation_reader;
   std::unique_ptr<services::Reader<pena_dds::CorrectionPubSubType>> correction_reader;
+  std::unique_ptr<services::Reader<pena_dds::OperatorCorrectionPubSubType>> operator_reader;
   std::unique_ptr<services::Reader<pena_dds::LineMapDeltaPubSubType>> entity_delta_reader;
   std::unique_ptr<services::Reader<pena_dds::LineMapSnapshotPubSubType>> entity_snapshot_reader;
   std::unique_ptr<services::Reader<pena_dds::GlobalMapDeltaPubSubType>> global_delta_reader;
@@ -109,6 +111,8 @@ struct DdsDomain::Impl {
   std::unique_ptr<StampedWriter<pena_dds::EntityPosePubSubType>> pose_writer;
   std::unique_ptr<StampedWriter<pena_dds::AnnotationPubSubType>> annotation_writer;
   std::unique_ptr<StampedWriter<pena_dds::CorrectionPubSubType>> correction_writer;
+  std::unique_ptr<StampedWriter<pena_dds::OperatorCorrectionPubSubType>> operator_writer;
+  std::unique_ptr<services::Writer<pena_dds::LinkHealthPubSubType>> health_writer;
   std::unique_ptr<StampedWriter<pena_dds::LineMapDeltaPubSubType>> entity_delta_writer;
   std::unique_ptr<StampedWriter<pena_dds::LineMapSnapshotPubSubType>> entity_snapshot_writer;
   std::unique_ptr<StampedWriter<pena_dds::GlobalMapDeltaPubSubType>> global_delta_writer;

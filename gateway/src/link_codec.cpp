@@ -17,6 +17,12 @@ std::int32_t ClampInt32(double value) {
   return static_cast<std::int32_t>(std::llround(std::clamp(value, -limit, limit)));
 }
 
+std::int64_t ClampInt64(double value) {
+  constexpr double kLimit = 9.0e18;
+  if (!std::isfinite(value)) return 0;
+  return static_cast<std::int64_t>(std::llround(std::clamp(value, -kLimit, kLimit)));
+}
+
 std::int32_t StampOffset(double stamp_s, std::uint64_t base_ms) {
   return ClampInt32(static_cast<double>(StampMs(stamp_s)) - static_cast<double>(base_ms));
 }
@@ -47,6 +53,7 @@ void PutPose(const PoseUpdate& pose, std::uint64_t base_ms, link::Pose* out) {
   out->set_stamp_offset_ms(StampOffset(pose.stamp_s, base_ms));
   out->set_position_sd_cm(SdQuanta(pose.position_sd_m, 0.01));
   out->set_heading_sd_ddeg(SdQuanta(pose.heading_sd_rad, 0.1 / kRadToDeg));
+  if (pose.mission_stamp_s) out->set_mission_stamp_ms(ClampInt64(*pose.mission_stamp_s * 1e3));
 }
 
 void PutAnnotation(const Annotation& a, std::uint64_t base_ms, link::Annotation* out) {
@@ -57,6 +64,43 @@ void PutAnnotation(const Annotation& a, std::uint64_t base_ms, link::Annotation*
   out->set_y_cm(ClampInt32(a.y_m * 100.0));
   out->set_stamp_offset_ms(StampOffset(a.stamp_s, base_ms));
   out->set_text(a.text);
+  if (a.mission_stamp_s) out->set_mission_stamp_ms(ClampInt64(*a.mission_stamp_s * 1e3));
+  out->set_radius_cm(static_cast<std::uint32_t>(std::clamp(std::ceil(a.radius_m * 100.0), 0.0, 1e9)));
+  for (const auto& [x, y] : a.outline_m) {
+    out->add_outline_cm(ClampInt32(x * 100.0));
+    out->add_outline_cm(ClampInt32(y * 100.0));
+  }
+}
+
+std::int32_t Mm(double metres) { return ClampInt32(metres * 1000.0); }
+
+void PutOperatorCorrection(const OperatorCorrection& c, std::uint64_t base_ms,
+                           link::OperatorCorrection* out) {
+  out->set_correction_id(c.correction_id);
+  out->set_operator_id(c.operator_id);
+  out->set_kind(c.kind);
+  out->set_entity(c.entity);
+  out->set_mission_stamp_us(ClampInt64(c.mission_stamp_s * 1e6));
+  out->set_origin_x_mm(Mm(c.origin_x_m));
+  out->set_origin_y_mm(Mm(c.origin_y_m));
+  out->set_wrong_x_mm(Mm(c.wrong_x_m));
+  out->set_wrong_y_mm(Mm(c.wrong_y_m));
+  out->set_correct_x_mm(Mm(c.correct_x_m));
+  out->set_correct_y_mm(Mm(c.correct_y_m));
+  out->set_pose_x_mm(Mm(c.world_from_body.x_m));
+  out->set_pose_y_mm(Mm(c.world_from_body.y_m));
+  out->set_pose_heading_cdeg(
+      ClampInt32(geometry::NormalizeAngle(c.world_from_body.theta_rad) * kRadToDeg * 100.0));
+  out->set_console_seq(c.console_seq);
+  out->set_segment_id(c.segment_id);
+  out->set_segment_x0_mm(Mm(c.segment_x0_m));
+  out->set_segment_y0_mm(Mm(c.segment_y0_m));
+  out->set_segment_x1_mm(Mm(c.segment_x1_m));
+  out->set_segment_y1_mm(Mm(c.segment_y1_m));
+  out->set_applied(c.applied);
+  out->set_refusal(c.refusal);
+  out->set_stamp_offset_ms(StampOffset(c.stamp_s, base_ms));
+  out->set_undoes_id(c.undoes_id);
 }
 
 void PutCorrection(const Correction& c, std::uint64_t base_ms, link::Correction* out) {
@@ -67,6 +111,7 @@ void PutCorrection(const Correction& c, std::uint64_t base_ms, link::Correction*
                                    kRadToDeg * 100.0));
   out->set_version(c.version);
   out->set_stamp_offset_ms(StampOffset(c.stamp_s, base_ms));
+  out->set_operator_id(c.operator_id);
 }
 
 void PutMap(const MapChange& change, link::MapUpdate* out) {
@@ -87,6 +132,47 @@ void PutMap(const MapChange& change, link::MapUpdate* out) {
 std::optional<DomainItem> Fail(std::string* error, const std::string& what) {
   if (error != nullptr) *error = what;
   return std::nullopt;
+}
+
+// The highest OperatorCorrectionKind (OPERATOR_UNDO).
+constexpr std::uint32_t kMaxOperatorKind = 5;
+
+std::optional<DomainItem> GetOperatorCorrection(const link::OperatorCorrection& c,
+                                                std::uint64_t base_ms, std::string* error) {
+  if (c.correction_id().empty()) return Fail(error, "operator correction: empty correction_id");
+  if (c.kind() > kMaxOperatorKind) {
+    return Fail(error, "operator correction " + c.correction_id() + ": kind " +
+                           std::to_string(c.kind()) + " out of range");
+  }
+  if (c.pose_heading_cdeg() > 18000 || c.pose_heading_cdeg() < -18000) {
+    return Fail(error, "operator correction " + c.correction_id() +
+                           ": pose_heading_cdeg out of [-18000, 18000]");
+  }
+  OperatorCorrection out;
+  out.correction_id = c.correction_id();
+  out.operator_id = c.operator_id();
+  out.kind = c.kind();
+  out.entity = c.entity();
+  out.mission_stamp_s = static_cast<double>(c.mission_stamp_us()) / 1e6;
+  out.origin_x_m = c.origin_x_mm() / 1000.0;
+  out.origin_y_m = c.origin_y_mm() / 1000.0;
+  out.wrong_x_m = c.wrong_x_mm() / 1000.0;
+  out.wrong_y_m = c.wrong_y_mm() / 1000.0;
+  out.correct_x_m = c.correct_x_mm() / 1000.0;
+  out.correct_y_m = c.correct_y_mm() / 1000.0;
+  out.world_from_body = {c.pose_x_mm() / 1000.0, c.pose_y_mm() / 1000.0,
+                         geometry::NormalizeAngle(c.pose_heading_cdeg() / 100.0 / kRadToDeg)};
+  out.console_seq = c.console_seq();
+  out.segment_id = c.segment_id();
+  out.segment_x0_m = c.segment_x0_mm() / 1000.0;
+  out.segment_y0_m = c.segment_y0_mm() / 1000.0;
+  out.segment_x1_m = c.segment_x1_mm() / 1000.0;
+  out.segment_y1_m = c.segment_y1_mm() / 1000.0;
+  out.applied = c.applied();
+  out.refusal = c.refusal();
+  out.stamp_s = StampFrom(c.stamp_offset_ms(), base_ms);
+  out.undoes_id = c.undoes_id();
+  return out;
 }
 
 std::optional<DomainItem> GetMap(const link::MapUpdate& m, std::string* error) {
@@ -131,6 +217,8 @@ void ToProto(const DomainItem& item, std::uint64_t base_stamp_ms, link::Item* ou
     PutAnnotation(*annotation, base_stamp_ms, out->mutable_annotation());
   } else if (const auto* correction = std::get_if<Correction>(&item)) {
     PutCorrection(*correction, base_stamp_ms, out->mutable_correction());
+  } else if (const auto* op = std::get_if<OperatorCorrection>(&item)) {
+    PutOperatorCorrection(*op, base_stamp_ms, out->mutable_operator_correction());
   } else {
     PutMap(std::get<MapChange>(item), out->mutable_map());
   }
@@ -143,14 +231,27 @@ std::optional<DomainItem> FromProto(const link::Item& item, std::uint64_t base_m
       const link::Pose& p = item.pose();
       if (p.heading_ddeg() >= 3600) return Fail(error, "pose: heading_ddeg >= 3600");
       const double theta = geometry::NormalizeAngle(p.heading_ddeg() / 10.0 / kRadToDeg);
-      return PoseUpdate{p.entity(), {p.x_cm() / 100.0, p.y_cm() / 100.0, theta},
-                        StampFrom(p.stamp_offset_ms(), base_ms), p.position_sd_cm() / 100.0,
-                        p.heading_sd_ddeg() / 10.0 / kRadToDeg};
+      PoseUpdate pose{p.entity(), {p.x_cm() / 100.0, p.y_cm() / 100.0, theta},
+                      StampFrom(p.stamp_offset_ms(), base_ms), p.position_sd_cm() / 100.0,
+                      p.heading_sd_ddeg() / 10.0 / kRadToDeg, std::nullopt};
+      if (p.has_mission_stamp_ms()) pose.mission_stamp_s = static_cast<double>(p.mission_stamp_ms()) / 1e3;
+      return pose;
     }
     case link::Item::kAnnotation: {
       const link::Annotation& a = item.annotation();
-      return Annotation{a.alarm(), a.entity(), a.id(), a.x_cm() / 100.0, a.y_cm() / 100.0,
-                        StampFrom(a.stamp_offset_ms(), base_ms), a.text()};
+      if (a.outline_cm_size() % 2 != 0 || a.outline_cm_size() > 2 * static_cast<int>(kMaxOutlinePoints)) {
+        return Fail(error, "annotation: outline_cm holds " + std::to_string(a.outline_cm_size()) +
+                               " values (an even count, at most " +
+                               std::to_string(2 * kMaxOutlinePoints) + ")");
+      }
+      Annotation out{a.alarm(), a.entity(), a.id(), a.x_cm() / 100.0, a.y_cm() / 100.0,
+                     StampFrom(a.stamp_offset_ms(), base_ms), a.text(), std::nullopt,
+                     a.radius_cm() / 100.0, {}};
+      if (a.has_mission_stamp_ms()) out.mission_stamp_s = static_cast<double>(a.mission_stamp_ms()) / 1e3;
+      for (int i = 0; i + 1 < a.outline_cm_size(); i += 2) {
+        out.outline_m.emplace_back(a.outline_cm(i) / 100.0, a.outline_cm(i + 1) / 100.0);
+      }
+      return out;
     }
     case link::Item::kCorrection: {
       const link::Correction& c = item.correction();
@@ -159,10 +260,12 @@ std::optional<DomainItem> FromProto(const link::Item& item, std::uint64_t base_m
       }
       const double theta = geometry::NormalizeAngle(c.heading_cdeg() / 100.0 / kRadToDeg);
       return Correction{c.entity(), {c.x_mm() / 1000.0, c.y_mm() / 1000.0, theta}, c.version(),
-                        StampFrom(c.stamp_offset_ms(), base_ms)};
+                        StampFrom(c.stamp_offset_ms(), base_ms), c.operator_id()};
     }
     case link::Item::kMap:
       return GetMap(item.map(), error);
+    case link::Item::kOperatorCorrection:
+      return GetOperatorCorrection(item.operator_correction(), base_ms, error);
     default:
       return Fail(error, "item without a domain body");
   }

@@ -125,8 +125,9 @@ void LinkScheduler::Offer(DomainItem item) {
       if (!slot.pose.entity.empty() && !slot.sent) ++replaced_poses_;
       slot = PoseSlot{std::move(*pose), false};
     }
-  } else if (auto* annotation = std::get_if<Annotation>(&item)) {
-    annotations_.emplace(next_seq_++, PendingAnnotation{std::move(*annotation), {}});
+  } else if (std::holds_alternative<Annotation>(item) ||
+             std::holds_alternative<OperatorCorrection>(item)) {
+    annotations_.emplace(next_seq_++, PendingAnnotation{std::move(item), {}});
   } else if (auto* correction = std::get_if<Correction>(&item)) {
     auto found = corrections_.find(correction->entity);
     if (found != corrections_.end() && correction->version <= found->second.correction.version) return;
@@ -202,7 +203,7 @@ Selection LinkScheduler::Fill(link::Envelope* envelope, std::size_t max_bytes, b
   Filler filler(envelope, max_bytes, oversized_ok, &selection, next_seq_);
   for (const auto& [seq, pending] : annotations_) {
     if (!pending.timer.Due(now_s)) continue;
-    if (!filler.Add(pending.annotation, seq, ItemClass::kAnnotation)) return selection;
+    if (!filler.Add(pending.item, seq, ItemClass::kAnnotation)) return selection;
     selection.annotation_seqs.push_back(seq);
   }
   // Oldest pose first, so no entity's pose waits behind the others twice.

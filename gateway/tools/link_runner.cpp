@@ -167,6 +167,40 @@ void LogRejected(const std::string& name, const FrameResult& result, const LinkS
                result.message);
 }
 
+// The link's health for the operator's console, over the window since `previous`.
+class HealthReporter {
+ public:
+  HealthReporter(std::string name, double start_s) : name_(std::move(name)), last_s_(start_s) {}
+  // Publishes once per second.
+  void Maybe(DdsDomain& dds, const LinkSession& session, double now_s) {
+    const double window_s = now_s - last_s_;
+    if (window_s < 1.0) return;
+    const LinkStats& stats = session.stats();
+    pena_dds::LinkHealth health;
+    health.gateway_id(name_.substr(0, 32));
+    health.schema_version(pena_dds::SCHEMA_VERSION);
+    health.peer_alive(session.peer_alive(now_s));
+    health.peer_heard_age_s(session.last_heard_s() < 0.0 ? -1.0 : now_s - session.last_heard_s());
+    health.budget_bit_s(session.options().budget_bit_s);
+    health.sent_bit_s(8.0 * static_cast<double>(stats.wire_bytes_sent - wire_bytes_) / window_s);
+    health.received_frames_s(static_cast<double>(stats.frames_received - frames_received_) / window_s);
+    health.pending_reliable(static_cast<std::uint32_t>(session.scheduler().pending_annotations()));
+    health.pending_map_updates(static_cast<std::uint32_t>(session.scheduler().pending_deltas()));
+    health.frames_rejected(stats.rejected_total());
+    health.resyncs(stats.resyncs);
+    dds.PublishLinkHealth(health);
+    wire_bytes_ = stats.wire_bytes_sent;
+    frames_received_ = stats.frames_received;
+    last_s_ = now_s;
+  }
+
+ private:
+  std::string name_;
+  double last_s_;
+  std::uint64_t wire_bytes_ = 0;
+  std::uint64_t frames_received_ = 0;
+};
+
 // The loop, for either transport (UdpLink or TcpLink: Send, Receive).
 template <typename Transport>
 std::string Run(const RunnerOptions& options, Transport& link, const std::atomic<bool>& stop) {
@@ -199,6 +233,7 @@ std::string Run(const RunnerOptions& options, Transport& link, const std::atomic
   }
   double last_change_s = 0.0;
   std::uint64_t send_errors = 0;
+  HealthReporter health(options.name, start_s);
   while (!stop && (options.duration_s <= 0.0 || WallClockS() - start_s < options.duration_s)) {
     for (std::string& frame : link.Receive(0.005)) inbound.Send(std::move(frame), WallClockS());
     const double now_s = WallClockS();
@@ -216,7 +251,10 @@ std::string Run(const RunnerOptions& options, Transport& link, const std::atomic
       for (DomainItem& item : team->Advance(now_s)) memory.Offer(std::move(item));
       last_change_s = std::max(0.0, team->last_map_change_s());
     }
-    if (dds) last_change_s = std::max(last_change_s, dds->last_sent_map_change_s());
+    if (dds) {
+      last_change_s = std::max(last_change_s, dds->last_sent_map_change_s());
+      health.Maybe(*dds, session, now_s);
+    }
     for (const std::string& frame : session.Poll(now_s)) {
       std::string error;
       if (!link.Send(frame, &error) && send_errors++ % 100 == 0) {

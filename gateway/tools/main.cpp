@@ -128,7 +128,7 @@ void AddDdsOptions(CLI::App& app, pena::gateway::RunnerOptions& options, DdsFlag
       ->check(CLI::Range(0, 232));
   app.add_option("--role", flags.role, "building | command-post | entities | fusion-post (docs/gateway.md)")
       ->check(CLI::IsMember({"building", "command-post", "entities", "fusion-post"}));
-  app.add_option("--send", flags.send, "classes read from DDS and sent (overrides the role): pose, entity_map, global_map, annotation, correction, none")
+  app.add_option("--send", flags.send, "classes read from DDS and sent (overrides the role): pose, entity_map, global_map, annotation, correction, operator_correction, none")
       ->delimiter(',');
   app.add_option("--publish", flags.publish, "classes received and published into DDS (overrides the role)")
       ->delimiter(',');

@@ -46,6 +46,9 @@ inline constexpr TopicSpec kOperatorCorrection{"pena/operator/correction",
 // pena_dds::Annotation.
 inline constexpr TopicSpec kAnnotation{"pena/annotation", "pena_operator_writer",
                                        "pena_operator_reader"};
+// pena_dds::LinkHealth, pena-gateway -> the operator's console.
+inline constexpr TopicSpec kLinkHealth{"pena/gateway/link_health", "pena_status_writer",
+                                       "pena_status_reader"};
 // pena_dds::SyncRequest: "send me your snapshot".
 inline constexpr TopicSpec kSyncRequest{"pena/sync_request", "pena_sync_request_writer",
                                         "pena_sync_request_reader"};

@@ -22,9 +22,7 @@ const json& Field(const json& object, const char* type, const char* name) {
   return *it;
 }
 
-Eigen::Vector2d PointField(const json& object, const char* type, const char* name) {
-  const json& value = Field(object, type, name);
-  const std::string where = std::string(type) + "." + name;
+Eigen::Vector2d PointValue(const json& value, const std::string& where) {
   if (!value.is_array() || value.size() != 2) {
     throw Refused(where + ": must be an array [x_m, y_m]");
   }
@@ -40,6 +38,25 @@ Eigen::Vector2d PointField(const json& object, const char* type, const char* nam
     point[static_cast<Eigen::Index>(i)] = d;
   }
   return point;
+}
+
+Eigen::Vector2d PointField(const json& object, const char* type, const char* name) {
+  return PointValue(Field(object, type, name), std::string(type) + "." + name);
+}
+
+// 3 to kMaxOutlinePoints corners of a polygon.
+std::vector<Eigen::Vector2d> OutlineField(const json& object, const char* type) {
+  const json& value = Field(object, type, "outline");
+  const std::string where = std::string(type) + ".outline";
+  if (!value.is_array() || value.size() < 3 || value.size() > kMaxOutlinePoints) {
+    throw Refused(where + ": must be an array of 3 to " + std::to_string(kMaxOutlinePoints) +
+                  " points [x_m, y_m]");
+  }
+  std::vector<Eigen::Vector2d> outline;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    outline.push_back(PointValue(value[i], where + "[" + std::to_string(i) + "]"));
+  }
+  return outline;
 }
 
 std::string EntityField(const json& object, const char* type) {
@@ -78,7 +95,19 @@ AnnotateRequest ParseAnnotate(const json& message) {
   if (std::find(std::begin(kKinds), std::end(kKinds), a.kind) == std::end(kKinds)) {
     throw Refused("annotate.kind: unknown kind '" + a.kind + "'");
   }
-  a.position_m = PointField(message, "annotate", "position");
+  if (message.contains("outline")) {
+    if (a.kind != "dangerous_area") throw Refused("annotate.outline: only a dangerous_area has one");
+    a.outline_m = OutlineField(message, "annotate");
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector2d& corner : a.outline_m) sum += corner;
+    a.position_m = sum / static_cast<double>(a.outline_m.size());
+    for (const Eigen::Vector2d& corner : a.outline_m) {
+      a.radius_m = std::max(a.radius_m, (corner - a.position_m).norm());
+    }
+    if (message.contains("position")) a.position_m = PointField(message, "annotate", "position");
+  } else {
+    a.position_m = PointField(message, "annotate", "position");
+  }
   if (message.contains("radius_m")) {
     const json& r = message["radius_m"];
     if (!r.is_number()) throw Refused("annotate.radius_m: not a number");
@@ -104,10 +133,22 @@ BrowserCommand ParseCommand(const json& message) {
     r.correct_m = PointField(message, "rotate", "correct");
     return r;
   }
+  if (type == "translate") {
+    TranslateRequest t;
+    t.entity_id = EntityField(message, "translate");
+    t.point_m = PointField(message, "translate", "point");
+    t.correct_m = PointField(message, "translate", "correct");
+    return t;
+  }
+  if (type == "undo") return UndoRequest{StringField(message, "undo", "id", 48)};
   if (type == "annotate") return ParseAnnotate(message);
   if (type == "retract") return RetractRequest{StringField(message, "retract", "id", 48)};
+  if (type == "move_mark") {
+    return MoveMarkRequest{StringField(message, "move_mark", "id", 48),
+                           PointField(message, "move_mark", "position")};
+  }
   throw Refused("message.type: unknown type '" + type.substr(0, 32) +
-                "' (rotate, annotate, retract, ping)");
+                "' (rotate, translate, undo, annotate, retract, move_mark, ping)");
 }
 
 }  // namespace

@@ -111,7 +111,13 @@ CorrectionRecord ToPicture(const pena_dds::OperatorCorrection& sample) {
       c.geometry = localisation::TranslationCorrection{
           sample.stamp_s(), FromDds(sample.wrong_point()), FromDds(sample.correct_point())};
       break;
+    case pena_dds::OPERATOR_UNDO:
+      c.kind = "undo";
+      c.undoes = sample.undoes_id().to_string();
+      break;
   }
+  c.applied = sample.applied();
+  c.refusal = sample.refusal().to_string();
   // A degenerate rotation from some other publisher is listed without moving anything.
   if (c.geometry) {
     try {
@@ -121,6 +127,23 @@ CorrectionRecord ToPicture(const pena_dds::OperatorCorrection& sample) {
     }
   }
   return c;
+}
+
+LinkRecord ToPicture(const pena_dds::LinkHealth& sample, std::int64_t heard_ns) {
+  CheckSchemaVersion(sample.schema_version(), "LinkHealth");
+  LinkRecord link;
+  link.gateway_id = sample.gateway_id().to_string();
+  link.peer_alive = sample.peer_alive();
+  link.peer_heard_age_s = sample.peer_heard_age_s();
+  link.budget_bit_s = sample.budget_bit_s();
+  link.sent_bit_s = sample.sent_bit_s();
+  link.received_frames_s = sample.received_frames_s();
+  link.pending_reliable = sample.pending_reliable();
+  link.pending_map_updates = sample.pending_map_updates();
+  link.frames_rejected = sample.frames_rejected();
+  link.resyncs = sample.resyncs();
+  link.heard_ns = heard_ns;
+  return link;
 }
 
 }  // namespace pena::services

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 namespace pena::services {
 namespace {
@@ -40,12 +42,28 @@ json AnnotationJson(const AnnotationRecord& a) {
 
 json CorrectionJson(const CorrectionRecord& c) {
   json out = {{"id", c.correction_id}, {"operator", c.operator_id}, {"kind", c.kind},
-              {"entity", c.entity_id}, {"stamp_s", c.stamp_s}};
+              {"entity", c.entity_id}, {"stamp_s", c.stamp_s},
+              {"state", c.applied ? "applied" : c.refusal.empty() ? "sent" : "refused"},
+              {"refusal", c.refusal}, {"undone", c.undone}, {"undoes", c.undoes}};
   if (c.geometry) {
     const geometry::Pose2 t = localisation::CorrectionTransform(*c.geometry);
     out["transform"] = json::array({t.x_m, t.y_m, t.theta_rad});
   }
   return out;
+}
+
+json LinkJson(const LinkRecord& l, std::int64_t now_ns) {
+  return {{"id", l.gateway_id},
+          {"peer_alive", l.peer_alive},
+          {"peer_heard_age_s", l.peer_heard_age_s},
+          {"budget_bit_s", l.budget_bit_s},
+          {"sent_bit_s", l.sent_bit_s},
+          {"received_frames_s", l.received_frames_s},
+          {"pending_reliable", l.pending_reliable},
+          {"pending_map_updates", l.pending_map_updates},
+          {"frames_rejected", l.frames_rejected},
+          {"resyncs", l.resyncs},
+          {"report_age_s", static_cast<double>(now_ns - l.heard_ns) * 1e-9}};
 }
 
 }  // namespace
@@ -116,17 +134,89 @@ void ConsolePicture::OnAnnotation(const AnnotationRecord& annotation) {
   dirty_annotations_.push_back(annotation.annotation_id);
 }
 
-void ConsolePicture::OnCorrection(const CorrectionRecord& correction) {
-  for (const CorrectionRecord& known : corrections_) {
-    if (known.correction_id == correction.correction_id) return;  // a durable sample again
+void ConsolePicture::OnCorrection(const CorrectionRecord& given) {
+  CorrectionRecord correction = given;
+  if (correction.kind == "undo") {
+    // The inverse of what it takes back: the same points with wrong and correct swapped.
+    const CorrectionRecord* undone = FindCorrection(correction.undoes);
+    if (undone != nullptr && undone->geometry) {
+      correction.geometry = std::visit(
+          [](auto g) -> localisation::OperatorCorrection {
+            if constexpr (std::is_same_v<decltype(g), localisation::RotationCorrection>) {
+              std::swap(g.wrong_m, g.correct_m);
+            } else {
+              std::swap(g.point_m, g.correct_m);
+            }
+            return g;
+          },
+          *undone->geometry);
+    }
+  }
+  const bool answer = correction.applied || !correction.refusal.empty();
+  for (std::size_t i = 0; i < corrections_.size(); ++i) {
+    CorrectionRecord& known = corrections_[i];
+    if (known.correction_id != correction.correction_id) continue;
+    const bool known_answered = known.applied || !known.refusal.empty();
+    if (!answer || known_answered) return;  // a durable sample again
+    known.applied = correction.applied;
+    known.refusal = correction.refusal;
+    if (!known.applied) {
+      MoveTrail(known, /*inverse=*/true);
+      MarkUndone(known.undoes, false);
+    }
+    if (i < corrections_sent_) changed_corrections_.push_back(i);
+    return;
   }
   corrections_.push_back(correction);
+  if (correction.refusal.empty()) {
+    MoveTrail(correction, /*inverse=*/false);
+    MarkUndone(correction.undoes, true);
+  }
+}
+
+void ConsolePicture::MarkUndone(const std::string& correction_id, bool undone) {
+  if (correction_id.empty()) return;
+  for (std::size_t i = 0; i < corrections_.size(); ++i) {
+    if (corrections_[i].correction_id != correction_id) continue;
+    corrections_[i].undone = undone;
+    if (i < corrections_sent_) changed_corrections_.push_back(i);
+  }
+}
+
+const CorrectionRecord* ConsolePicture::FindCorrection(const std::string& correction_id) const {
+  for (const CorrectionRecord& c : corrections_) {
+    if (c.correction_id == correction_id) return &c;
+  }
+  return nullptr;
+}
+
+const CorrectionRecord* ConsolePicture::LastInForce(const std::string& entity_id) const {
+  for (auto it = corrections_.rbegin(); it != corrections_.rend(); ++it) {
+    if (it->entity_id == entity_id && it->geometry && it->kind != "undo" && !it->undone &&
+        it->refusal.empty()) {
+      return &*it;
+    }
+  }
+  return nullptr;
+}
+
+void ConsolePicture::MoveTrail(const CorrectionRecord& correction, bool inverse) {
   const auto it = entities_.find(correction.entity_id);
   if (!correction.geometry || it == entities_.end()) return;
-  // The trajectory from the correction's stamp on, as the operator asked it to be.
-  it->second.trail = localisation::ApplyCorrection(it->second.trail, *correction.geometry);
+  // The trajectory from the correction's stamp on, as the operator asked it to be (section 4.1).
+  geometry::Pose2 transform = localisation::CorrectionTransform(*correction.geometry);
+  if (inverse) transform = geometry::Inverse(transform);
+  const double from_s = localisation::FromStamp(*correction.geometry);
+  for (auto& point : it->second.trail) {
+    if (point.stamp_s >= from_s) point.pose = geometry::Compose(transform, point.pose);
+  }
   it->second.trail_replaced = true;
   it->second.dirty = true;
+}
+
+void ConsolePicture::OnLinkHealth(const LinkRecord& link) {
+  links_[link.gateway_id] = link;
+  links_dirty_ = true;
 }
 
 std::string ConsolePicture::StateOf(const Entity& entity, std::int64_t now_ns) const {
@@ -187,7 +277,10 @@ nlohmann::json ConsolePicture::Snapshot(std::int64_t now_ns) const {
   for (const auto& [id, a] : annotations_) annotations.push_back(AnnotationJson(a));
   json corrections = json::array();
   for (const CorrectionRecord& c : corrections_) corrections.push_back(CorrectionJson(c));
+  json links = json::array();
+  for (const auto& [id, link] : links_) links.push_back(LinkJson(link, now_ns));
   return {{"type", "snapshot"},
+          {"links", links},
           {"now_ms", Ms(now_ns)},
           {"entities", entities},
           {"map", {{"version", map_.version()}, {"segments", segments}}},
@@ -243,13 +336,23 @@ std::optional<nlohmann::json> ConsolePicture::TakeDelta(std::int64_t now_ns) {
     out["annotations"] = std::move(annotations);
     any = true;
   }
-  if (corrections_sent_ < corrections_.size()) {
+  if (corrections_sent_ < corrections_.size() || !changed_corrections_.empty()) {
+    // New ones and answered ones; the page replaces a listed id.
     json corrections = json::array();
+    for (std::size_t i : changed_corrections_) corrections.push_back(CorrectionJson(corrections_[i]));
     for (std::size_t i = corrections_sent_; i < corrections_.size(); ++i) {
       corrections.push_back(CorrectionJson(corrections_[i]));
     }
+    changed_corrections_.clear();
     corrections_sent_ = corrections_.size();
     out["corrections"] = std::move(corrections);
+    any = true;
+  }
+  if (links_dirty_) {
+    json links = json::array();
+    for (const auto& [id, link] : links_) links.push_back(LinkJson(link, now_ns));
+    out["links"] = std::move(links);
+    links_dirty_ = false;
     any = true;
   }
   if (!any) return std::nullopt;

@@ -51,10 +51,25 @@ struct StatusUpdate {
 struct CorrectionRecord {
   std::string correction_id;
   std::string operator_id;
-  std::string kind;  // "rotate", "translate", "set_pose", ...
+  std::string kind;  // "rotate", "translate", "undo", "set_pose", ...
   std::string entity_id;
+  std::string undoes;  // kind "undo": the correction it takes back
   double stamp_s = 0.0;  // mission time from which it applies
   std::optional<localisation::OperatorCorrection> geometry;  // rotate and translate
+  bool applied = false;  // pena-fusion's answer: journalled, applied, sent to the entity
+  std::string refusal;   // pena-fusion's answer: why it was not applied
+  bool undone = false;   // an undo took it back
+};
+
+// A pena-gateway endpoint's report on the radio link (from pena_dds::LinkHealth).
+struct LinkRecord {
+  std::string gateway_id;
+  bool peer_alive = false;
+  double peer_heard_age_s = -1.0;  // < 0: never heard
+  double budget_bit_s = 0.0, sent_bit_s = 0.0, received_frames_s = 0.0;
+  std::uint32_t pending_reliable = 0, pending_map_updates = 0;
+  std::uint64_t frames_rejected = 0, resyncs = 0;
+  std::int64_t heard_ns = 0;  // this machine's clock when the report came
 };
 
 // A mark on the map (from pena_dds::Annotation).
@@ -82,7 +97,9 @@ class ConsolePicture {
   void OnAnnotation(const AnnotationRecord& annotation);
   // Listed; a rotation or translation also moves the entity's trail from its stamp on (the
   // picture shows the trajectory as corrected, section 4.1).
+  // pena-fusion's answer to a listed correction updates it; a refused one's move is taken back.
   void OnCorrection(const CorrectionRecord& correction);
+  void OnLinkHealth(const LinkRecord& link);
 
   // Everything, for a browser that just connected.
   nlohmann::json Snapshot(std::int64_t now_ns) const;
@@ -99,6 +116,11 @@ class ConsolePicture {
   std::optional<Nearest> NearestTrailPose(const std::string& entity_id,
                                           const Eigen::Vector2d& point_m) const;
   bool HasEntity(const std::string& entity_id) const { return entities_.count(entity_id) > 0; }
+  // The correction with that id, or nullptr.
+  const CorrectionRecord* FindCorrection(const std::string& correction_id) const;
+  // The last rotation or translation of the entity still in force (not undone, not refused),
+  // or nullptr: what an undo may take back.
+  const CorrectionRecord* LastInForce(const std::string& entity_id) const;
   // The annotation with that id, or nullptr.
   const AnnotationRecord* FindAnnotation(const std::string& annotation_id) const;
   // The latest mission time any entity's pose carried (0 before the first pose).
@@ -120,6 +142,10 @@ class ConsolePicture {
   nlohmann::json EntityJson(const std::string& id, const Entity& entity, std::int64_t now_ns,
                             bool whole_trail) const;
   void ApplyEarly();
+  // Moves the entity's trail from the correction's stamp on (inverse: takes the move back).
+  void MoveTrail(const CorrectionRecord& correction, bool inverse);
+  // Marks a listed correction undone (or in force again when its undo was refused).
+  void MarkUndone(const std::string& correction_id, bool undone);
 
   PictureOptions options_;
   double latest_stamp_s_ = 0.0;
@@ -132,6 +158,9 @@ class ConsolePicture {
   std::vector<std::string> dirty_annotations_;
   std::vector<CorrectionRecord> corrections_;
   std::size_t corrections_sent_ = 0;
+  std::vector<std::size_t> changed_corrections_;  // sent before, answered since
+  std::map<std::string, LinkRecord> links_;
+  bool links_dirty_ = false;
 };
 
 // A segment is observed when an entity contributed to it, plan-only when every source is the a

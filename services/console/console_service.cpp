@@ -68,9 +68,13 @@ ConsoleService::ConsoleService(ConsoleOptions options)
       annotation_reader_(participant_, topics::kAnnotation,
                          Enqueue<pena_dds::AnnotationPubSubType>()),
       correction_reader_(participant_, topics::kOperatorCorrection,
-                         Enqueue<pena_dds::OperatorCorrectionPubSubType>()) {
-  // The topic is durable: a run's ids "<operator>/<start s>-<n>" differ from an earlier run's.
-  run_id_ = std::to_string(NowNs() / 1'000'000'000);
+                         Enqueue<pena_dds::OperatorCorrectionPubSubType>()),
+      link_health_reader_(participant_, topics::kLinkHealth,
+                          [this](pena_dds::LinkHealth&& sample, const SampleMeta& /*meta*/) {
+                            inbox_.Push(Event(LinkHealthEvent{std::move(sample)}));
+                          }) {
+  // The topic is durable: a run's ids differ from an earlier run's.
+  run_start_s_ = static_cast<std::uint64_t>(NowNs() / 1'000'000'000);
   WebServerCallbacks callbacks;
   callbacks.on_open = [this](std::uint64_t session) { inbox_.Push(Event(BrowserOpen{session})); };
   callbacks.on_message = [this](std::uint64_t session, std::string text) {
@@ -152,6 +156,11 @@ void ConsoleService::Handle(const pena_dds::OperatorCorrection& sample) {
   picture_.OnCorrection(ToPicture(sample));
 }
 
+void ConsoleService::Handle(const LinkHealthEvent& health) {
+  ++summary_.samples;
+  picture_.OnLinkHealth(ToPicture(health.sample, NowNs()));
+}
+
 void ConsoleService::Handle(const BrowserOpen& open) {
   ++summary_.browsers;
   // Everyone else first gets what changed, so the snapshot and the next delta fit together.
@@ -188,8 +197,14 @@ void ConsoleService::Handle(const BrowserMessage& message) {
           Reply(message.session, request.req, "pong", "");
         } else if constexpr (std::is_same_v<T, RotateRequest>) {
           Rotate(message.session, request.req, command);
+        } else if constexpr (std::is_same_v<T, TranslateRequest>) {
+          Translate(message.session, request.req, command);
+        } else if constexpr (std::is_same_v<T, UndoRequest>) {
+          Undo(message.session, request.req, command);
         } else if constexpr (std::is_same_v<T, AnnotateRequest>) {
           Annotate(message.session, request.req, command);
+        } else if constexpr (std::is_same_v<T, MoveMarkRequest>) {
+          MoveMark(message.session, request.req, command);
         } else {
           Retract(message.session, request.req, command);
         }
@@ -198,49 +213,95 @@ void ConsoleService::Handle(const BrowserMessage& message) {
 }
 
 std::string ConsoleService::NextId() {
-  return options_.operator_id + "/" + run_id_ + "-" + std::to_string(next_seq_++);
+  constexpr std::uint64_t kPerRun = 100'000;
+  if (next_seq_ >= kPerRun) throw std::length_error("this console run has used all its ids; restart it");
+  return options_.operator_id + "/" + std::to_string(run_start_s_ * kPerRun + next_seq_++);
 }
 
-void ConsoleService::Rotate(std::uint64_t session, std::int64_t req, const RotateRequest& rotate) {
-  const std::string who = "rotate " + rotate.entity_id;
-  std::string problem;
-  const auto nearest = picture_.NearestTrailPose(rotate.entity_id, rotate.origin_m);
-  if (!picture_.HasEntity(rotate.entity_id)) {
-    problem = "rotate.entity: unknown entity '" + rotate.entity_id + "'";
-  } else if (!nearest) {
-    problem = who + ": no trajectory yet to rotate";
-  } else if (nearest->distance_m > options_.max_origin_distance_m) {
-    problem = "rotate.origin: " + Num(nearest->distance_m) + " m from " + rotate.entity_id +
-              "'s trajectory (at most " + Num(options_.max_origin_distance_m) + " m)";
-  } else if ((rotate.wrong_m - rotate.origin_m).norm() < 0.1 ||
-             (rotate.correct_m - rotate.origin_m).norm() < 0.1) {
-    problem = who + ": the wrong and correct direction points must be at least 0.1 m from the "
-                    "origin";
+std::variant<ConsolePicture::Nearest, std::string> ConsoleService::MomentAt(
+    const std::string& entity_id, const Eigen::Vector2d& point_m, const std::string& field) const {
+  if (!picture_.HasEntity(entity_id)) {
+    return field.substr(0, field.find('.')) + ".entity: unknown entity '" + entity_id + "'";
   }
-  if (!problem.empty()) {
-    Refuse(session, req, problem);
-    return;
+  const auto nearest = picture_.NearestTrailPose(entity_id, point_m);
+  if (!nearest) return entity_id + ": no trajectory yet to correct";
+  if (nearest->distance_m > options_.max_origin_distance_m) {
+    return field + ": " + Num(nearest->distance_m) + " m from " + entity_id +
+           "'s trajectory (at most " + Num(options_.max_origin_distance_m) + " m)";
   }
-  const std::uint64_t seq = next_seq_;
-  const std::string correction_id = NextId();
-  pena_dds::OperatorCorrection sample =
-      ToDdsRotation(rotate, nearest->stamp_s, options_.operator_id, correction_id, seq);
+  return *nearest;
+}
+
+void ConsoleService::Send(std::uint64_t session, std::int64_t req,
+                          pena_dds::OperatorCorrection& sample, const std::string& done) {
+  const std::string correction_id = sample.correction_id().to_string();
   if (!correction_writer_.Write(sample)) {
-    Refuse(session, req, who + ": DDS refused the correction");
+    Refuse(session, req, correction_id + ": DDS refused the correction");
     return;
   }
   ++summary_.corrections_sent;
+  spdlog::info("{} sent {}: {}", options_.operator_id, correction_id, done);
+  Reply(session, req, "ack", done + " sent", correction_id);
+}
+
+void ConsoleService::Rotate(std::uint64_t session, std::int64_t req, const RotateRequest& rotate) {
+  const auto moment = MomentAt(rotate.entity_id, rotate.origin_m, "rotate.origin");
+  if (const auto* problem = std::get_if<std::string>(&moment)) {
+    Refuse(session, req, *problem);
+    return;
+  }
+  if ((rotate.wrong_m - rotate.origin_m).norm() < 0.1 ||
+      (rotate.correct_m - rotate.origin_m).norm() < 0.1) {
+    Refuse(session, req, "rotate " + rotate.entity_id +
+                             ": the wrong and correct direction points must be at least 0.1 m "
+                             "from the origin");
+    return;
+  }
+  const double stamp_s = std::get<ConsolePicture::Nearest>(moment).stamp_s;
   const double angle_deg =
       localisation::CorrectionTransform(localisation::RotationCorrection{
-          nearest->stamp_s, rotate.origin_m, rotate.wrong_m, rotate.correct_m})
+          stamp_s, rotate.origin_m, rotate.wrong_m, rotate.correct_m})
           .theta_rad * 180.0 / M_PI;
-  spdlog::info("{} sent {}: rotate {} by {:.2f} deg about ({:.2f}, {:.2f}) from {:.2f} s",
-               options_.operator_id, correction_id, rotate.entity_id, angle_deg,
-               rotate.origin_m.x(), rotate.origin_m.y(), nearest->stamp_s);
-  Reply(session, req, "ack",
-        "rotation of " + rotate.entity_id + " by " + Num(angle_deg) + " deg from " +
-            Num(nearest->stamp_s) + " s sent",
-        correction_id);
+  const std::uint64_t seq = next_seq_;
+  pena_dds::OperatorCorrection sample =
+      ToDdsRotation(rotate, stamp_s, options_.operator_id, NextId(), seq);
+  Send(session, req, sample,
+       "rotation of " + rotate.entity_id + " by " + Num(angle_deg) + " deg from " +
+           Num(stamp_s) + " s");
+}
+
+void ConsoleService::Translate(std::uint64_t session, std::int64_t req,
+                               const TranslateRequest& translate) {
+  const auto moment = MomentAt(translate.entity_id, translate.point_m, "translate.point");
+  if (const auto* problem = std::get_if<std::string>(&moment)) {
+    Refuse(session, req, *problem);
+    return;
+  }
+  const double stamp_s = std::get<ConsolePicture::Nearest>(moment).stamp_s;
+  const Eigen::Vector2d shift = translate.correct_m - translate.point_m;
+  const std::uint64_t seq = next_seq_;
+  pena_dds::OperatorCorrection sample =
+      ToDdsTranslation(translate, stamp_s, options_.operator_id, NextId(), seq);
+  Send(session, req, sample,
+       "translation of " + translate.entity_id + " by (" + Num(shift.x()) + ", " +
+           Num(shift.y()) + ") m from " + Num(stamp_s) + " s");
+}
+
+void ConsoleService::Undo(std::uint64_t session, std::int64_t req, const UndoRequest& undo) {
+  const CorrectionRecord* undone = picture_.FindCorrection(undo.correction_id);
+  if (undone == nullptr || !undone->geometry || undone->kind == "undo") {
+    Refuse(session, req, "undo.id: no rotation or translation '" + undo.correction_id + "' listed");
+    return;
+  }
+  if (picture_.LastInForce(undone->entity_id) != undone) {
+    Refuse(session, req, "undo.id: '" + undo.correction_id + "' is not the last correction of " +
+                             undone->entity_id + " in force (undo goes from the last one)");
+    return;
+  }
+  const std::uint64_t seq = next_seq_;
+  pena_dds::OperatorCorrection sample = ToDdsUndo(*undone, options_.operator_id, NextId(), seq);
+  Send(session, req, sample, "undo of " + undone->kind + " " + undo.correction_id + " of " +
+                                 undone->entity_id);
 }
 
 void ConsoleService::Annotate(std::uint64_t session, std::int64_t req,
@@ -254,8 +315,31 @@ void ConsoleService::Annotate(std::uint64_t session, std::int64_t req,
   record.y_m = annotate.position_m.y();
   record.radius_m = annotate.radius_m;
   record.text = annotate.text;
-  Publish(session, req, record, "marked " + annotate.kind + " at " + Num(record.x_m) + ", " +
-                                    Num(record.y_m));
+  for (const Eigen::Vector2d& corner : annotate.outline_m) {
+    record.outline.emplace_back(corner.x(), corner.y());
+  }
+  const std::string shape =
+      record.outline.empty() ? "" : " (" + std::to_string(record.outline.size()) + " corners)";
+  Publish(session, req, record, "marked " + annotate.kind + shape + " at " + Num(record.x_m) +
+                                    ", " + Num(record.y_m));
+}
+
+void ConsoleService::MoveMark(std::uint64_t session, std::int64_t req, const MoveMarkRequest& move) {
+  const AnnotationRecord* known = picture_.FindAnnotation(move.annotation_id);
+  if (known == nullptr || known->retracted) {
+    Refuse(session, req, "move_mark.id: no mark '" + move.annotation_id + "' to move");
+    return;
+  }
+  AnnotationRecord record = *known;
+  const double dx = move.position_m.x() - record.x_m, dy = move.position_m.y() - record.y_m;
+  record.x_m += dx;
+  record.y_m += dy;
+  for (auto& [x, y] : record.outline) {
+    x += dx;
+    y += dy;
+  }
+  Publish(session, req, record, "moved " + record.kind + " " + record.annotation_id + " to " +
+                                    Num(record.x_m) + ", " + Num(record.y_m));
 }
 
 void ConsoleService::Retract(std::uint64_t session, std::int64_t req,

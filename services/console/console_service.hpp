@@ -76,14 +76,17 @@ class ConsoleService {
   struct BrowserClose {
     std::uint64_t session;
   };
+  struct LinkHealthEvent {
+    pena_dds::LinkHealth sample;
+  };
   struct PoseEvent {
     pena_dds::EntityPose sample;
     SampleMeta meta;
   };
   using Event = std::variant<PoseEvent, pena_dds::EntityStatus, pena_dds::GlobalMapDelta,
                              pena_dds::GlobalMapSnapshot, pena_dds::Annotation,
-                             pena_dds::OperatorCorrection, BrowserOpen, BrowserMessage,
-                             BrowserClose>;
+                             pena_dds::OperatorCorrection, LinkHealthEvent, BrowserOpen,
+                             BrowserMessage, BrowserClose>;
   template <class PubSubType>
   typename Reader<PubSubType>::SampleCallback Enqueue();
 
@@ -93,10 +96,21 @@ class ConsoleService {
   void Handle(const pena_dds::GlobalMapSnapshot& sample);
   void Handle(const pena_dds::Annotation& sample);
   void Handle(const pena_dds::OperatorCorrection& sample);
+  void Handle(const LinkHealthEvent& health);
   void Handle(const BrowserOpen& open);
   void Handle(const BrowserMessage& message);
   void Handle(const BrowserClose& close);
   void Rotate(std::uint64_t session, std::int64_t req, const RotateRequest& rotate);
+  void Translate(std::uint64_t session, std::int64_t req, const TranslateRequest& translate);
+  void Undo(std::uint64_t session, std::int64_t req, const UndoRequest& undo);
+  void MoveMark(std::uint64_t session, std::int64_t req, const MoveMarkRequest& move);
+  // The moment of the entity's trail nearest `point_m`, or the problem (naming `field`).
+  std::variant<ConsolePicture::Nearest, std::string> MomentAt(const std::string& entity_id,
+                                                              const Eigen::Vector2d& point_m,
+                                                              const std::string& field) const;
+  // Publishes an operator correction and answers the browser.
+  void Send(std::uint64_t session, std::int64_t req, pena_dds::OperatorCorrection& sample,
+            const std::string& done);
   void Annotate(std::uint64_t session, std::int64_t req, const AnnotateRequest& annotate);
   void Retract(std::uint64_t session, std::int64_t req, const RetractRequest& retract);
   // Publishes a new or changed annotation and answers the browser.
@@ -104,7 +118,8 @@ class ConsoleService {
                const std::string& done);
   // Answers an error; nothing was applied.
   void Refuse(std::uint64_t session, std::int64_t req, const std::string& problem);
-  // "<operator>/<run>-<n>": unique across runs (the operator topics are durable).
+  // "<operator>/<n>", n = the run's start in wall seconds * 100000 + a count: unique across
+  // runs (the operator topics are durable) and decimal, as the link packs annotation ids.
   std::string NextId();
   void Flush();
   // Answers a browser's request: an error names what was wrong, nothing is applied.
@@ -116,7 +131,7 @@ class ConsoleService {
   ConsoleSummary summary_;
   std::uint64_t next_seq_ = 1;
   // Wall seconds at start: this run's ids differ from an earlier run's.
-  std::string run_id_;
+  std::uint64_t run_start_s_ = 0;
   WorkQueue<Event> inbox_;
   Participant participant_;
   Writer<pena_dds::OperatorCorrectionPubSubType> correction_writer_;
@@ -127,6 +142,7 @@ class ConsoleService {
   Reader<pena_dds::GlobalMapSnapshotPubSubType> snapshot_reader_;
   Reader<pena_dds::AnnotationPubSubType> annotation_reader_;
   Reader<pena_dds::OperatorCorrectionPubSubType> correction_reader_;
+  Reader<pena_dds::LinkHealthPubSubType> link_health_reader_;
   // Last: destroyed first, so no callback reaches a half-destroyed service.
   std::unique_ptr<WebServer> web_;
 };

@@ -32,6 +32,36 @@ pena_dds::OperatorCorrection ToDdsRotation(const RotateRequest& request, double 
   return sample;
 }
 
+pena_dds::OperatorCorrection ToDdsTranslation(const TranslateRequest& request, double from_stamp_s,
+                                              const std::string& operator_id,
+                                              const std::string& correction_id, std::uint64_t seq) {
+  pena_dds::OperatorCorrection sample;
+  SetBounded(sample.correction_id(), correction_id, "correction_id");
+  sample.schema_version(pena_dds::SCHEMA_VERSION);
+  SetBounded(sample.operator_id(), operator_id, "operator_id");
+  sample.kind(pena_dds::OPERATOR_TRANSLATE);
+  SetBounded(sample.target_entity_id(), request.entity_id, "target_entity_id");
+  sample.stamp_s(from_stamp_s);
+  sample.wrong_point(ToDdsPoint(request.point_m));
+  sample.correct_point(ToDdsPoint(request.correct_m));
+  sample.seq(seq);
+  return sample;
+}
+
+pena_dds::OperatorCorrection ToDdsUndo(const CorrectionRecord& undone, const std::string& operator_id,
+                                       const std::string& correction_id, std::uint64_t seq) {
+  pena_dds::OperatorCorrection sample;
+  SetBounded(sample.correction_id(), correction_id, "correction_id");
+  sample.schema_version(pena_dds::SCHEMA_VERSION);
+  SetBounded(sample.operator_id(), operator_id, "operator_id");
+  sample.kind(pena_dds::OPERATOR_UNDO);
+  SetBounded(sample.target_entity_id(), undone.entity_id, "target_entity_id");
+  sample.stamp_s(undone.stamp_s);
+  SetBounded(sample.undoes_id(), undone.correction_id, "undoes_id");
+  sample.seq(seq);
+  return sample;
+}
+
 pena_dds::Annotation ToDdsAnnotation(const AnnotationRecord& a) {
   static const std::pair<const char*, pena_dds::AnnotationKind> kKinds[] = {
       {"dangerous_area", pena_dds::ANNOTATION_DANGEROUS_AREA},

@@ -133,19 +133,73 @@ void FusionService::Handle(const pena_dds::LineMapSnapshot& sample, const Sample
   AfterPlacement(entity_id, Apply(fusion::LocalSnapshot{NowS(), entity_id, std::move(snapshot)}));
 }
 
+namespace {
+
+// The move an operator's rotation, translation or undo makes (paper section 4.1): the transform
+// corrected_from_wrong, from when, and its kind, filled into `record`; a problem (refused) or "".
+// An undo takes back the last move of its entity still in force, from that move's stamp on.
+std::string OperatorMove(const pena_dds::OperatorCorrection& sample, const OperatorLog& log,
+                         OperatorLogRecord* record) {
+  if (sample.kind() == pena_dds::OPERATOR_UNDO) {
+    const std::string undoes = sample.undoes_id().to_string();
+    const OperatorLogRecord* undone = log.Find(undoes);
+    if (undone == nullptr || undone->entity_id != record->entity_id || undone->kind == "undo") {
+      return "nothing to undo: '" + undoes + "' is no correction of " + record->entity_id +
+             " applied here";
+    }
+    if (log.LastInForce(record->entity_id) != undoes) {
+      return "'" + undoes + "' is not the last correction of " + record->entity_id +
+             " in force (undo goes from the last one)";
+    }
+    record->kind = "undo";
+    record->undoes = undoes;
+    record->from_stamp_s = undone->from_stamp_s;
+    record->corrected_from_wrong = geometry::Inverse(undone->corrected_from_wrong);
+    return "";
+  }
+  const auto point = [](const pena_dds::Point2& p) { return Eigen::Vector2d(p.x_m(), p.y_m()); };
+  localisation::OperatorCorrection move;
+  if (sample.kind() == pena_dds::OPERATOR_ROTATE) {
+    move = localisation::RotationCorrection{sample.stamp_s(), point(sample.rotation_origin()),
+                                            point(sample.wrong_point()),
+                                            point(sample.correct_point())};
+    record->kind = "rotate";
+  } else {
+    move = localisation::TranslationCorrection{sample.stamp_s(), point(sample.wrong_point()),
+                                               point(sample.correct_point())};
+    record->kind = "translate";
+  }
+  try {
+    record->corrected_from_wrong = localisation::CorrectionTransform(move);  // section 4.1
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  const geometry::Pose2& t = record->corrected_from_wrong;
+  if (!std::isfinite(sample.stamp_s()) || !std::isfinite(t.x_m) || !std::isfinite(t.y_m) ||
+      !std::isfinite(t.theta_rad)) {
+    return "not finite";
+  }
+  return "";
+}
+
+}  // namespace
+
 void FusionService::Handle(const pena_dds::OperatorCorrection& sample, const SampleMeta& meta) {
   if (FromSelf(meta)) return;
   CheckSchemaVersion(sample.schema_version(), "OperatorCorrection");
+  if (sample.applied() || !sample.refusal().to_string().empty()) return;  // an answer, ours or another's
   stats_.Count("received", topics::kOperatorCorrection.name, sample.operator_id().to_string(),
                SizeOf<pena_dds::OperatorCorrectionPubSubType>(sample));
   const std::string entity_id = sample.target_entity_id().to_string();
-  if (sample.kind() == pena_dds::OPERATOR_ROTATE || sample.kind() == pena_dds::OPERATOR_TRANSLATE) {
+  if (sample.kind() == pena_dds::OPERATOR_ROTATE || sample.kind() == pena_dds::OPERATOR_TRANSLATE ||
+      sample.kind() == pena_dds::OPERATOR_UNDO) {
     HandleOperatorMove(sample);
     return;
   }
   if (sample.kind() != pena_dds::OPERATOR_SET_POSE) {
     spdlog::warn("operator correction {}: segment edits are not supported; ignored",
                  sample.correction_id().to_string());
+    AnswerOperator(sample, "segment edits are not supported");
     return;
   }
   // Relayed to the entity, which moves its own frame (its later walls arrive corrected).
@@ -159,49 +213,49 @@ void FusionService::Handle(const pena_dds::OperatorCorrection& sample, const Sam
   if (corrections_) corrections_->Forget(entity_id);  // the entity's frame is the operator's now
   spdlog::info("operator {} set {}'s pose at {:.3f} s; relayed as a correction",
                sample.operator_id().to_string(), entity_id, sample.stamp_s());
+  AnswerOperator(sample, "");
+}
+
+void FusionService::AnswerOperator(const pena_dds::OperatorCorrection& sample,
+                                   const std::string& refusal) {
+  if (!operator_answer_writer_) return;
+  pena_dds::OperatorCorrection answer = sample;
+  answer.applied(refusal.empty());
+  SetBounded(answer.refusal(), refusal.substr(0, 160), "operator correction refusal");
+  if (!operator_answer_writer_->Write(answer)) {
+    spdlog::warn("operator correction {}: answer not written", sample.correction_id().to_string());
+  }
 }
 
 void FusionService::HandleOperatorMove(const pena_dds::OperatorCorrection& sample) {
   const std::string id = sample.correction_id().to_string();
   const std::string entity_id = sample.target_entity_id().to_string();
   const std::string author = sample.operator_id().to_string();
-  if (operator_log_->Contains(id)) return;  // applied before (a durable sample comes again)
-  const auto point = [](const pena_dds::Point2& p) { return Eigen::Vector2d(p.x_m(), p.y_m()); };
-  localisation::OperatorCorrection move;
-  if (sample.kind() == pena_dds::OPERATOR_ROTATE) {
-    move = localisation::RotationCorrection{sample.stamp_s(), point(sample.rotation_origin()),
-                                            point(sample.wrong_point()),
-                                            point(sample.correct_point())};
-  } else {
-    move = localisation::TranslationCorrection{sample.stamp_s(), point(sample.wrong_point()),
-                                               point(sample.correct_point())};
-  }
-  geometry::Pose2 corrected_from_wrong;
-  try {
-    corrected_from_wrong = localisation::CorrectionTransform(move);  // section 4.1
-  } catch (const std::invalid_argument& error) {
-    spdlog::warn("operator correction {} of {} dropped: {}", id, entity_id, error.what());
+  if (operator_log_->Contains(id)) {  // applied before (a durable sample comes again)
+    AnswerOperator(sample, "");
     return;
   }
-  if (!std::isfinite(corrected_from_wrong.x_m) || !std::isfinite(corrected_from_wrong.y_m) ||
-      !std::isfinite(corrected_from_wrong.theta_rad)) {
-    spdlog::warn("operator correction {} of {} dropped: not finite", id, entity_id);
+  OperatorLogRecord record{id, entity_id, author, "", sample.stamp_s(), {}, ""};
+  if (const std::string problem = OperatorMove(sample, *operator_log_, &record); !problem.empty()) {
+    spdlog::warn("operator correction {} of {} dropped: {}", id, entity_id, problem);
+    AnswerOperator(sample, problem);
     return;
   }
+  const geometry::Pose2 corrected_from_wrong = record.corrected_from_wrong;
   const double angle_deg = corrected_from_wrong.theta_rad * 180.0 / M_PI;
   const bool placed_entity = start_unknown_[entity_id];
   const auto latest = latest_pose_.find(entity_id);
   if (!placed_entity && latest == latest_pose_.end()) {
     spdlog::warn("operator correction {} of {} dropped: no pose of it heard yet", id, entity_id);
+    AnswerOperator(sample, "no pose of " + entity_id + " heard yet");
     return;
   }
   // Recorded (and synced) before it is applied: a restart neither loses nor repeats it.
   try {
-    operator_log_->Append({id, entity_id, author,
-                           sample.kind() == pena_dds::OPERATOR_ROTATE ? "rotate" : "translate",
-                           sample.stamp_s(), corrected_from_wrong});
+    operator_log_->Append(record);
   } catch (const std::runtime_error& error) {
     spdlog::error("operator correction {} of {} NOT applied: {}", id, entity_id, error.what());
+    AnswerOperator(sample, std::string("not journalled: ") + error.what());
     return;
   }
   if (placed_entity) {
@@ -211,6 +265,7 @@ void FusionService::HandleOperatorMove(const pena_dds::OperatorCorrection& sampl
         Apply(fusion::OperatorCorrection{NowS(), entity_id, corrected_from_wrong, author});
     if (!output.problem.empty()) {
       spdlog::warn("operator correction {} dropped: {}", id, output.problem);
+      AnswerOperator(sample, output.problem);
       return;
     }
     SendPlacement(entity_id, 1.0, 0);
@@ -236,7 +291,8 @@ void FusionService::HandleOperatorMove(const pena_dds::OperatorCorrection& sampl
   stats_.Add("operator_corrections");
   spdlog::info("operator {}: {} of {} by ({:.3f} m, {:.3f} m, {:.2f} deg) from {:.3f} s sent",
                author, id, entity_id, corrected_from_wrong.x_m, corrected_from_wrong.y_m,
-               angle_deg, sample.stamp_s());
+               angle_deg, record.from_stamp_s);
+  AnswerOperator(sample, "");
 }
 
 void FusionService::Handle(const pena_dds::Annotation& sample, const SampleMeta& meta) {

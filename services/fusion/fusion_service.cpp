@@ -97,7 +97,10 @@ void FusionService::CreateOperatorEndpoints() {
         Enqueue<pena_dds::OperatorCorrectionPubSubType>("operator_correction"));
     annotation_reader_ = std::make_unique<Reader<pena_dds::AnnotationPubSubType>>(
         participant_, topics::kAnnotation, Enqueue<pena_dds::AnnotationPubSubType>("annotation"));
+    operator_answer_writer_ = std::make_unique<Writer<pena_dds::OperatorCorrectionPubSubType>>(
+        participant_, topics::kOperatorCorrection);
   } catch (const DdsError& error) {
+    operator_answer_writer_.reset();
     annotation_reader_.reset();
     operator_reader_.reset();
     annotation_writer_.reset();

@@ -93,6 +93,8 @@ class FusionService {
   void Handle(const pena_dds::OperatorCorrection& sample, const SampleMeta& meta);
   // The operator's three-point rotation or translation (paper section 4.1) of one entity.
   void HandleOperatorMove(const pena_dds::OperatorCorrection& sample);
+  // Writes the answer to an operator's correction: applied (refusal empty) or why not.
+  void AnswerOperator(const pena_dds::OperatorCorrection& sample, const std::string& refusal);
   void Handle(const pena_dds::Annotation& sample, const SampleMeta& meta);
   void Handle(const pena_dds::SyncRequest& sample, const SampleMeta& meta);
   void Handle(const pena_dds::ReferenceScan& sample, const SampleMeta& meta);
@@ -193,6 +195,8 @@ class FusionService {
   // Operator topics: optional, so a QoS profile Fast DDS rejects there does not stop the map.
   std::unique_ptr<Writer<pena_dds::AnnotationPubSubType>> annotation_writer_;
   std::unique_ptr<Reader<pena_dds::OperatorCorrectionPubSubType>> operator_reader_;
+  // pena-fusion's answers to operator corrections (applied or refused), on the same key.
+  std::unique_ptr<Writer<pena_dds::OperatorCorrectionPubSubType>> operator_answer_writer_;
   std::unique_ptr<Reader<pena_dds::AnnotationPubSubType>> annotation_reader_;
 };
 

@@ -33,6 +33,35 @@ TEST(BrowserRequest, ParsesAMarkAndItsRetraction) {
   EXPECT_EQ(std::get<RetractRequest>(retract.command()).annotation_id, "op/1-3");
 }
 
+TEST(BrowserRequest, ParsesTranslationUndoAndMoveOfAMark) {
+  const BrowserRequest t = ParseBrowserRequest(
+      R"({"type":"translate","entity":"ff2","point":[1,2],"correct":[1.5,-2]})");
+  ASSERT_TRUE(t.ok()) << t.error();
+  const auto& translate = std::get<TranslateRequest>(t.command());
+  EXPECT_EQ(translate.entity_id, "ff2");
+  EXPECT_DOUBLE_EQ(translate.point_m.y(), 2.0);
+  EXPECT_DOUBLE_EQ(translate.correct_m.x(), 1.5);
+  const BrowserRequest u = ParseBrowserRequest(R"({"type":"undo","id":"op/17"})");
+  ASSERT_TRUE(u.ok()) << u.error();
+  EXPECT_EQ(std::get<UndoRequest>(u.command()).correction_id, "op/17");
+  const BrowserRequest m = ParseBrowserRequest(R"({"type":"move_mark","id":"op/3","position":[7,8]})");
+  ASSERT_TRUE(m.ok()) << m.error();
+  EXPECT_EQ(std::get<MoveMarkRequest>(m.command()).annotation_id, "op/3");
+  EXPECT_DOUBLE_EQ(std::get<MoveMarkRequest>(m.command()).position_m.y(), 8.0);
+}
+
+// A dangerous area as a polygon: its centroid is the position, its farthest corner the radius.
+TEST(BrowserRequest, ParsesADangerousAreaPolygon) {
+  const BrowserRequest r = ParseBrowserRequest(
+      R"({"type":"annotate","kind":"dangerous_area","outline":[[0,0],[4,0],[4,3],[0,3]],"text":"gas"})");
+  ASSERT_TRUE(r.ok()) << r.error();
+  const auto& a = std::get<AnnotateRequest>(r.command());
+  ASSERT_EQ(a.outline_m.size(), 4u);
+  EXPECT_DOUBLE_EQ(a.position_m.x(), 2.0);
+  EXPECT_DOUBLE_EQ(a.position_m.y(), 1.5);
+  EXPECT_DOUBLE_EQ(a.radius_m, 2.5);
+}
+
 // Each hostile message is refused with an error that names what was wrong.
 struct Hostile {
   std::string text;
@@ -79,7 +108,25 @@ INSTANTIATE_TEST_SUITE_P(
         Hostile{"{\"type\":\"annotate\",\"kind\":\"exit\",\"position\":[1,2],\"text\":\"" +
                     std::string(300, 'y') + "\"}",
                 "annotate.text: at most 255"},
-        Hostile{R"({"type":"retract"})", "retract.id: missing"}));
+        Hostile{R"({"type":"retract"})", "retract.id: missing"},
+        Hostile{R"({"type":"translate","entity":"ff1","point":[1,2]})", "translate.correct: missing"},
+        Hostile{R"({"type":"translate","entity":"ff1","point":[1,2],"correct":[null,2]})",
+                "translate.correct[0]: not a number"},
+        Hostile{R"({"type":"undo","id":5})", "undo.id: not a string"},
+        Hostile{R"({"type":"move_mark","id":"op/1","position":"here"})", "move_mark.position"},
+        Hostile{R"({"type":"annotate","kind":"dangerous_area","outline":[[0,0],[1,1]]})",
+                "annotate.outline: must be an array of 3"},
+        Hostile{R"({"type":"annotate","kind":"dangerous_area","outline":[[0,0],[1,1],[2,"x"]]})",
+                "annotate.outline[2][1]: not a number"},
+        Hostile{R"({"type":"annotate","kind":"exit","outline":[[0,0],[1,1],[2,0]]})",
+                "only a dangerous_area"},
+        Hostile{"{\"type\":\"annotate\",\"kind\":\"dangerous_area\",\"outline\":[" +
+                    [] {
+                      std::string points;
+                      for (int i = 0; i < 65; ++i) points += std::string(i ? "," : "") + "[1,2]";
+                      return points;
+                    }() + "]}",
+                "annotate.outline: must be an array of 3 to 64"}));
 
 }  // namespace
 }  // namespace pena::services

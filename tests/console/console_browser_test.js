@@ -18,6 +18,7 @@
 'use strict';
 
 const fs = require('fs');
+const net = require('net');
 const path = require('path');
 const { launchChromium } = require('./chromium');
 
@@ -190,6 +191,8 @@ async function run(browser, o) {
   if (corrections !== 0) fail(`${corrections} corrections after hostile input (expected none)`);
   console.log(`hostile input: ${hostile.length + 1} messages refused, nothing applied`);
 
+  await stalledBrowsers(page, o);
+
   // ---- 3. a second page and a reload hold the same picture ----
   const other = await browser.newPage();
   await other.goto(o.url, { waitUntil: 'load' });
@@ -198,13 +201,70 @@ async function run(browser, o) {
   await samePicture(page, other, 'the reloaded page');
   await other.close();
   if (o.url2) await annotation(browser, page, o);
+  if (o.url2 && !o.rotate) await gestures(browser, page, o);
 
   // ---- 4. the three-point rotation ----
   if (o.rotate) await rotation(page, o, truth[o.rotate]);
 
   await page.screenshot({ path: path.join(o.out, 'console.png') });
+  await exports(page, o);
   if (pageErrors.length) fail(`errors in the page: ${pageErrors.join('; ')}`);
   console.log('PASS');
+}
+
+// Browsers that stop reading, or vanish without closing, hold nobody back: while three such
+// connections are open (one never reads, one vanishes at once, one vanishes mid-stream), the
+// page keeps getting its deltas at the tick rate.
+async function stalledBrowsers(page, o) {
+  const url = new URL(o.url);
+  const handshake = `GET /ws HTTP/1.1\r\nHost: ${url.host}\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n` +
+                    'Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n';
+  const open = () => new Promise((resolve, reject) => {
+    const socket = net.connect(Number(url.port), url.hostname, () => { socket.write(handshake); resolve(socket); });
+    socket.on('error', reject);
+  });
+  const deltas = () => page.evaluate(() => window.penaConsole.state.deltas);
+  const b0 = await deltas(), tb = Date.now();
+  await sleep(3000);
+  const before = await deltas();
+  const t0 = Date.now();
+  const baseline = (before - b0) / ((t0 - tb) / 1000);
+  const stalled = await open();
+  stalled.pause();  // never reads: the console's writes to it back up
+  (await open()).destroy();  // gone before the snapshot
+  const vanishing = await open();
+  await sleep(1000);
+  vanishing.resetAndDestroy();  // gone mid-stream, without a close frame (TCP reset)
+  await sleep(5000);
+  const got = await deltas() - before;
+  const seconds = (Date.now() - t0) / 1000;
+  stalled.destroy();
+  console.log(`stalled and vanished browsers: the page got ${(got / seconds).toFixed(1)} deltas/s meanwhile, ` +
+              `${baseline.toFixed(1)} deltas/s just before (tick 50 ms)`);
+  if (got / seconds < 0.6 * baseline) fail(`the page got ${got} deltas in ${seconds.toFixed(1)} s beside a stalled browser`);
+}
+
+// The page's exports hold the picture: the SVG has every wall and every entity where the canvas
+// draws them, the PNG is the canvas.
+async function exports(page, o) {
+  const shown = await page.evaluate(() => {
+    const c = window.penaConsole;
+    const out = { svg: c.exportSvg(), png: c.exportPng(), entities: {}, walls: c.state.segments.size };
+    for (const [id, e] of c.state.entities) if (e.pose) out.entities[id] = c.toScreen(e.pose.x, e.pose.y);
+    return out;
+  });
+  fs.writeFileSync(path.join(o.out, 'console.svg'), shown.svg);
+  fs.writeFileSync(path.join(o.out, 'console_map.png'), Buffer.from(shown.png.split(',')[1], 'base64'));
+  const walls = (shown.svg.match(/M[-\d.]+ [-\d.]+L/g) || []).length;
+  if (!shown.svg.startsWith('<svg') || walls !== shown.walls) fail(`the SVG holds ${walls} of ${shown.walls} walls`);
+  for (const [id, [x, y]] of Object.entries(shown.entities)) {
+    // The label sits 11 px right of and 8 px above the marker.
+    const label = new RegExp(`<text x="([-\\d.]+)" y="([-\\d.]+)"[^>]*>${id}[<( ]`).exec(shown.svg);
+    if (!label || Math.hypot(Number(label[1]) - 11 - x, Number(label[2]) + 8 - y) > 0.2) fail(`${id} is not in the SVG where the canvas draws it`);
+  }
+  if (!shown.png.startsWith('data:image/png;base64,') || shown.png.length < 10000) fail('the PNG export is empty');
+  console.log(`exports: SVG with ${walls} walls and ${Object.keys(shown.entities).length} entities where the canvas has them, ` +
+              `PNG of ${Math.round(shown.png.length * 0.75 / 1024)} KiB`);
 }
 
 // Both pages at the same map version show the same walls and the same entities.
@@ -273,6 +333,104 @@ async function annotation(browser, page, o) {
   await second.close();
   await page.bringToFront();
 }
+
+// The other gestures, by clicks on the page: a translation and its undo (each answered
+// "applied" by pena-fusion, listed with its operator), a dangerous area drawn as a polygon and a
+// mark moved, both seen at the second console.
+async function gestures(browser, page, o) {
+  await page.bringToFront();
+  const ids = Object.keys(await poses(page)).sort();
+  const id = ids[ids.length - 1];
+  const p = (await poses(page))[id];
+  await page.select('#rotate-entity', id);
+  let n = await ackCount(page);
+  await page.click('#translate');
+  await click(page, p.x, p.y);
+  await click(page, p.x + 0.4, p.y - 0.3);
+  await waitFor(page, (k) => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length > k, n, 5000,
+                'no answer to the clicked translation');
+  const applied = async (kind) => {
+    const until = Date.now() + 20000;
+    let c = null;
+    while (Date.now() < until) {
+      c = await page.evaluate((k) => window.penaConsole.state.corrections.filter((x) => x.kind === k).pop(), kind);
+      if (c && c.state !== 'sent') break;
+      await sleep(200);
+    }
+    if (!c || c.state !== 'applied') fail(`the ${kind} was not applied by pena-fusion: ${JSON.stringify(c)}`);
+    return c;
+  };
+  const shift = await applied('translate');
+  console.log(`translation of ${id} by (${shift.transform[0].toFixed(2)}, ${shift.transform[1].toFixed(2)}) m from ` +
+              `${shift.stamp_s.toFixed(1)} s by ${shift.operator}: ${shift.state}`);
+  // Two clicks, each within a pixel of its point: the shift within 2 px.
+  const px = 1 / await page.evaluate(() => window.penaConsole.view.scale);
+  if (Math.abs(shift.transform[0] - 0.4) > 2 * px || Math.abs(shift.transform[1] + 0.3) > 2 * px) {
+    fail(`the translation is not what was clicked (1 px = ${px.toFixed(3)} m)`);
+  }
+  n = await ackCount(page);
+  await page.click('#undo');
+  await waitFor(page, (k) => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length > k, n, 5000,
+                'no answer to undo');
+  const undo = await applied('undo');
+  const undone = await page.evaluate((cid) => window.penaConsole.state.corrections.find((x) => x.id === cid), shift.id);
+  console.log(`undo ${undo.id} of ${undo.undoes}: ${undo.state}; ${shift.id} undone: ${undone.undone}`);
+  if (undo.undoes !== shift.id || !undone.undone) fail('the undo did not take the translation back');
+  const listed = await page.$eval('#corrections', (el) => el.textContent);
+  if (!listed.includes(`undo of ${shift.id}`) || !listed.includes(`by ${shift.operator}`)) {
+    fail(`the corrections list does not say it: ${listed}`);
+  }
+  // A second undo has nothing in force for that entity's last translation: refused, shown.
+  const refusedBefore = await page.evaluate(() => window.penaConsole.state.messages.filter((m) => m.kind === 'error').length);
+  await page.evaluate((cid) => window.penaConsole.send({ type: 'undo', id: cid }), shift.id);
+  await waitFor(page, (k) => window.penaConsole.state.messages.filter((m) => m.kind === 'error').length > k,
+                refusedBefore, 5000, 'undoing an undone correction was not refused');
+
+  // A dangerous area: four corners clicked, closed on the first.
+  const corners = [[p.x + 1, p.y + 1], [p.x + 3, p.y + 1], [p.x + 3, p.y + 2.5], [p.x + 1, p.y + 2.5]];
+  await page.$eval('#mark-text', (el) => { el.value = ''; });
+  await page.type('#mark-text', 'gas, test');
+  n = await ackCount(page);
+  await page.click('#area');
+  for (const c of corners) await click(page, c[0], c[1]);
+  await click(page, corners[0][0], corners[0][1]);
+  await waitFor(page, (k) => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length > k, n, 5000,
+                'no answer to the dangerous area');
+  const second = await browser.newPage();
+  await second.goto(o.url2, { waitUntil: 'load' });
+  const area = async () => second.evaluate(() => [...window.penaConsole.state.annotations.values()]
+      .find((a) => a.text === 'gas, test'));
+  let a = null;
+  for (const until = Date.now() + 15000; Date.now() < until && !(a = await area());) await sleep(100);
+  if (!a || a.kind !== 'dangerous_area' || a.outline.length !== 4) fail(`the area reached the second console as ${JSON.stringify(a)}`);
+  const worst = Math.max(...a.outline.map((q, i) => Math.hypot(q[0] - corners[i][0], q[1] - corners[i][1])));
+  console.log(`dangerous area of ${a.outline.length} corners on the second console, corners within ${(worst * 100).toFixed(1)} cm of the clicks`);
+  if (worst > 0.1) fail('the area\'s corners are not where they were clicked');
+  // Move it by clicks: its outline moves with it.
+  await page.bringToFront();
+  const button = `#annotations li[data-annotation="${a.id}"] button.move`;
+  await page.waitForSelector(button, { timeout: 5000 });
+  n = await ackCount(page);
+  await page.click(button);
+  await click(page, a.x + 1, a.y - 1);
+  await waitFor(page, (k) => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length > k, n, 5000,
+                'no answer to the move');
+  let moved = a;
+  for (const until = Date.now() + 15000; Date.now() < until && Math.abs(moved.x - a.x - 1) > 0.05;) {
+    await sleep(100);
+    moved = await area();
+  }
+  console.log(`moved on the first console: at (${moved.x.toFixed(2)}, ${moved.y.toFixed(2)}) on the second, ` +
+              `first corner (${moved.outline[0][0].toFixed(2)}, ${moved.outline[0][1].toFixed(2)})`);
+  if (Math.abs(moved.x - a.x - 1) > 0.05 || Math.abs(moved.outline[0][1] - a.outline[0][1] + 1) > 0.05) {
+    fail('the move did not reach the second console');
+  }
+  await page.screenshot({ path: path.join(o.out, 'console_gestures.png') });
+  await second.close();
+  await page.bringToFront();
+}
+
+const ackCount = (page) => page.evaluate(() => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length);
 
 // Clicks a map point (metres) on the canvas.
 async function click(page, x, y) {

@@ -113,6 +113,96 @@ TEST(ConsolePicture, RotationMovesTheTrailFromItsStampOn) {
   EXPECT_NEAR((*delta)["corrections"][0]["transform"][2].get<double>(), M_PI / 2, 1e-9);
 }
 
+// pena-fusion's answer updates the listed correction; a refusal takes the trail's move back.
+TEST(ConsolePicture, FusionAnswerUpdatesTheListAndARefusalTakesTheMoveBack) {
+  ConsolePicture picture;
+  for (std::uint64_t i = 1; i <= 4; ++i) {
+    picture.OnPose(Pose("ff2", i, static_cast<double>(i), 0.0, kSecond));
+  }
+  CorrectionRecord rotate;
+  rotate.correction_id = "op/7";
+  rotate.operator_id = "op";
+  rotate.kind = "rotate";
+  rotate.entity_id = "ff2";
+  rotate.stamp_s = 2.0;
+  rotate.geometry = localisation::RotationCorrection{2.0, {2.0, 0.0}, {3.0, 0.0}, {2.0, 1.0}};
+  picture.OnCorrection(rotate);
+  auto delta = picture.TakeDelta(kSecond);
+  ASSERT_TRUE(delta);
+  EXPECT_EQ((*delta)["corrections"][0]["state"], "sent");
+  CorrectionRecord refused = rotate;
+  refused.refusal = "no pose of ff2 heard yet";
+  picture.OnCorrection(refused);
+  picture.OnCorrection(refused);  // the answer again: nothing more
+  delta = picture.TakeDelta(kSecond);
+  ASSERT_TRUE(delta);
+  ASSERT_EQ((*delta)["corrections"].size(), 1u);
+  EXPECT_EQ((*delta)["corrections"][0]["state"], "refused");
+  EXPECT_EQ((*delta)["corrections"][0]["refusal"], "no pose of ff2 heard yet");
+  const nlohmann::json& trail = (*delta)["entities"][0]["trail"];
+  ASSERT_EQ(trail.size(), 4u);
+  EXPECT_NEAR(trail[3][1].get<double>(), 4.0, 1e-9);  // back where the entity put it
+  EXPECT_NEAR(trail[3][2].get<double>(), 0.0, 1e-9);
+  EXPECT_EQ(picture.Snapshot(kSecond)["corrections"][0]["state"], "refused");
+}
+
+// An undo takes the last correction in force back: the trail returns, the list says so.
+TEST(ConsolePicture, UndoTakesTheLastCorrectionBack) {
+  ConsolePicture picture;
+  for (std::uint64_t i = 1; i <= 4; ++i) {
+    picture.OnPose(Pose("ff1", i, static_cast<double>(i), 0.0, kSecond));
+  }
+  CorrectionRecord shift;
+  shift.correction_id = "op/1";
+  shift.operator_id = "op";
+  shift.kind = "translate";
+  shift.entity_id = "ff1";
+  shift.stamp_s = 3.0;
+  shift.geometry = localisation::TranslationCorrection{3.0, {3.0, 0.0}, {3.0, 1.0}};
+  picture.OnCorrection(shift);
+  EXPECT_EQ(picture.LastInForce("ff1"), picture.FindCorrection("op/1"));
+  picture.TakeDelta(kSecond);
+  CorrectionRecord undo;
+  undo.correction_id = "op/2";
+  undo.operator_id = "op";
+  undo.kind = "undo";
+  undo.entity_id = "ff1";
+  undo.stamp_s = 3.0;
+  undo.undoes = "op/1";
+  picture.OnCorrection(undo);
+  EXPECT_EQ(picture.LastInForce("ff1"), nullptr);
+  const auto delta = picture.TakeDelta(kSecond);
+  ASSERT_TRUE(delta);
+  const nlohmann::json& trail = (*delta)["entities"][0]["trail"];
+  ASSERT_EQ(trail.size(), 4u);
+  EXPECT_NEAR(trail[3][2].get<double>(), 0.0, 1e-9);  // (4, 1) back to (4, 0)
+  bool undone_listed = false;
+  for (const auto& c : (*delta)["corrections"]) {
+    if (c["id"] == "op/1") undone_listed = c["undone"].get<bool>();
+  }
+  EXPECT_TRUE(undone_listed);
+}
+
+// A gateway's report on the radio link reaches the browsers.
+TEST(ConsolePicture, LinkHealthIsShown) {
+  ConsolePicture picture;
+  LinkRecord link;
+  link.gateway_id = "post";
+  link.peer_alive = true;
+  link.peer_heard_age_s = 0.4;
+  link.budget_bit_s = 8640.0;
+  link.heard_ns = kSecond;
+  picture.OnLinkHealth(link);
+  const auto delta = picture.TakeDelta(2 * kSecond);
+  ASSERT_TRUE(delta);
+  ASSERT_EQ((*delta)["links"].size(), 1u);
+  EXPECT_EQ((*delta)["links"][0]["id"], "post");
+  EXPECT_EQ((*delta)["links"][0]["peer_alive"], true);
+  EXPECT_NEAR((*delta)["links"][0]["report_age_s"].get<double>(), 1.0, 1e-9);
+  EXPECT_FALSE(picture.TakeDelta(2 * kSecond));  // nothing new
+  EXPECT_EQ(picture.Snapshot(2 * kSecond)["links"].size(), 1u);
+}
+
 TEST(ConsolePicture, NearestTrailPoseGivesTheMomentOfTheOrigin) {
   ConsolePicture picture;
   for (std::uint64_t i = 1; i <= 5; ++i) {

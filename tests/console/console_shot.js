@@ -1,17 +1,23 @@
-// A screenshot of the console page as a browser shows it: Debian's chromium (headless) opens
-// the page, waits for the picture (a snapshot with at least one entity), fits the view and
-// writes a PNG. Used by deploy/demo/run-team.sh for OUT/console.png.
+// The console's picture from the command line: Debian's chromium (headless) opens a running
+// pena-console's page, waits for the picture (a snapshot with at least --min-entities entities),
+// fits the view and writes FILE: .svg the picture as SVG (the page's "SVG" export), .png a
+// screenshot of the whole page, or with --map-only yes the map's canvas alone (the page's "PNG"
+// export). Needs no ground truth: it draws what the console holds (fusion's global map, the
+// poses and trails, marks and corrections), so it serves real missions as well as simulated
+// ones. Used by deploy/demo/run-team.sh for OUT/console.png.
 //
-//   node console_shot.js --url URL --out FILE.png [--chromium /usr/bin/chromium]
+//   node console_shot.js --url URL --out FILE.png|FILE.svg [--map-only yes] [--min-entities 1]
+//                        [--width 1280] [--height 800] [--chromium /usr/bin/chromium]
 'use strict';
 
+const fs = require('fs');
 const { launchChromium } = require('./chromium');
 
-const o = { chromium: '/usr/bin/chromium' };
+const o = { chromium: '/usr/bin/chromium', 'min-entities': '1', 'map-only': 'no', width: '1280', height: '800' };
 const argv = process.argv.slice(2);
 for (let i = 0; i < argv.length; i += 2) o[argv[i].replace(/^--/, '')] = argv[i + 1];
-if (!o.url || !o.out) {
-  console.error('usage: node console_shot.js --url URL --out FILE.png');
+if (!o.url || !o.out || !/\.(png|svg)$/.test(o.out)) {
+  console.error('usage: node console_shot.js --url URL --out FILE.png|FILE.svg [--map-only yes] [--min-entities N]');
   process.exit(1);
 }
 
@@ -19,12 +25,21 @@ if (!o.url || !o.out) {
   const { browser, close } = await launchChromium(o.chromium);
   try {
     const page = await browser.newPage();
+    await page.setViewport({ width: Number(o.width), height: Number(o.height) });
     await page.goto(o.url, { waitUntil: 'load' });
-    await page.waitForFunction(() => window.penaConsole.state.snapshots > 0 &&
-                               window.penaConsole.state.entities.size > 0, { timeout: 20000, polling: 100 });
+    await page.waitForFunction((n) => window.penaConsole.state.snapshots > 0 &&
+                               window.penaConsole.state.entities.size >= n,
+                               { timeout: 20000, polling: 100 }, Number(o['min-entities']));
     await page.evaluate(() => { window.penaConsole.fit(); window.penaConsole.redraw(); });
     await new Promise((r) => setTimeout(r, 700));  // the side panel refreshes every 500 ms
-    await page.screenshot({ path: o.out });
+    if (o.out.endsWith('.svg')) {
+      fs.writeFileSync(o.out, await page.evaluate(() => window.penaConsole.exportSvg()));
+    } else if (o['map-only'] === 'yes') {
+      const url = await page.evaluate(() => window.penaConsole.exportPng());
+      fs.writeFileSync(o.out, Buffer.from(url.replace(/^data:image\/png;base64,/, ''), 'base64'));
+    } else {
+      await page.screenshot({ path: o.out });
+    }
   } finally {
     await close();
   }

@@ -246,6 +246,107 @@ TEST(LinkCodec, PoseUncertaintyRoundsUpWithinAQuantum) {
   }
 }
 
+// A pose's mission time crosses at 1 ms, besides its wall-clock stamp.
+TEST(LinkCodec, PoseCarriesItsMissionTime) {
+  PoseUpdate pose{"ff1", {1.0, 2.0, 0.5}, 100.1234};
+  pose.mission_stamp_s = 12.3456;
+  link::Item item;
+  ToProto(pose, 100000, &item);
+  std::string error;
+  std::optional<DomainItem> back = FromProto(item, 100000, &error);
+  ASSERT_TRUE(back) << error;
+  const auto& got = std::get<PoseUpdate>(*back);
+  ASSERT_TRUE(got.mission_stamp_s);
+  EXPECT_NEAR(*got.mission_stamp_s, 12.3456, 0.0005);
+  EXPECT_NEAR(got.stamp_s, 100.1234, 0.0005);
+  EXPECT_LE(item.ByteSizeLong(), 26U);
+}
+
+// An operator's correction crosses whole: points at 1 mm, its mission time at 1 us, who made it,
+// and pena-fusion's answer.
+TEST(LinkCodec, OperatorCorrectionRoundTripsWithItsMissionTimeAndOperator) {
+  OperatorCorrection c;
+  c.correction_id = "post/176500000000003";
+  c.operator_id = "post";
+  c.kind = 3;  // OPERATOR_ROTATE
+  c.entity = "ff2";
+  c.mission_stamp_s = 41.234567;
+  c.origin_x_m = 1.2344;
+  c.origin_y_m = -2.5;
+  c.wrong_x_m = 4.0;
+  c.wrong_y_m = 0.0011;
+  c.correct_x_m = 3.5;
+  c.correct_y_m = 1.75;
+  c.console_seq = 3;
+  c.refusal = "no pose of ff2 heard yet";
+  c.stamp_s = 100.5;
+  c.undoes_id = "post/176500000000001";
+  link::Item item;
+  ToProto(c, 100000, &item);
+  std::string error;
+  std::optional<DomainItem> back = FromProto(item, 100000, &error);
+  ASSERT_TRUE(back) << error;
+  const auto& got = std::get<OperatorCorrection>(*back);
+  EXPECT_EQ(got.correction_id, c.correction_id);
+  EXPECT_EQ(got.operator_id, "post");
+  EXPECT_EQ(got.kind, 3U);
+  EXPECT_EQ(got.entity, "ff2");
+  EXPECT_NEAR(got.mission_stamp_s, 41.234567, 1e-6);
+  EXPECT_NEAR(got.origin_x_m, 1.2344, 0.0005);
+  EXPECT_NEAR(got.origin_y_m, -2.5, 0.0005);
+  EXPECT_NEAR(got.wrong_y_m, 0.0011, 0.0005);
+  EXPECT_NEAR(got.correct_x_m, 3.5, 0.0005);
+  EXPECT_NEAR(got.correct_y_m, 1.75, 0.0005);
+  EXPECT_EQ(got.console_seq, 3U);
+  EXPECT_FALSE(got.applied);
+  EXPECT_EQ(got.refusal, c.refusal);
+  EXPECT_EQ(got.undoes_id, c.undoes_id);
+  EXPECT_NEAR(got.stamp_s, 100.5, 0.0005);
+  // A kind beyond OPERATOR_UNDO, or no id, is refused naming the field.
+  item.mutable_operator_correction()->set_kind(6);
+  EXPECT_FALSE(FromProto(item, 100000, &error));
+  EXPECT_NE(error.find("kind"), std::string::npos) << error;
+  item.mutable_operator_correction()->set_kind(3);
+  item.mutable_operator_correction()->clear_correction_id();
+  EXPECT_FALSE(FromProto(item, 100000, &error));
+  EXPECT_NE(error.find("correction_id"), std::string::npos) << error;
+}
+
+// An area crosses with its outline and radius (1 cm), a mark with its mission time.
+TEST(LinkCodec, AnnotationCarriesOutlineRadiusAndMissionTime) {
+  Annotation a{true, "post", 7u << 4, 3.0, 4.0, 100.0, "smoke"};
+  a.mission_stamp_s = 55.5;
+  a.radius_m = 2.004;
+  a.outline_m = {{1.0, 1.0}, {5.0, 1.0}, {5.0, 6.0}};
+  link::Item item;
+  ToProto(a, 100000, &item);
+  std::string error;
+  std::optional<DomainItem> back = FromProto(item, 100000, &error);
+  ASSERT_TRUE(back) << error;
+  const auto& got = std::get<Annotation>(*back);
+  ASSERT_TRUE(got.mission_stamp_s);
+  EXPECT_NEAR(*got.mission_stamp_s, 55.5, 0.0005);
+  EXPECT_GE(got.radius_m, 2.004);
+  EXPECT_LT(got.radius_m, 2.004 + 0.01);
+  ASSERT_EQ(got.outline_m.size(), 3U);
+  EXPECT_NEAR(got.outline_m[2].second, 6.0, 0.005);
+  // An odd number of outline values is refused.
+  item.mutable_annotation()->add_outline_cm(5);
+  EXPECT_FALSE(FromProto(item, 100000, &error));
+  EXPECT_NE(error.find("outline_cm"), std::string::npos) << error;
+}
+
+// A relayed operator correction keeps its operator: the entity applies it beyond its bound.
+TEST(LinkCodec, CorrectionCarriesItsOperator) {
+  const Correction c{"ff1", {1.0, 2.0, 0.1}, 7, 100.0, "post"};
+  link::Item item;
+  ToProto(c, 100000, &item);
+  std::string error;
+  std::optional<DomainItem> back = FromProto(item, 100000, &error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_EQ(std::get<Correction>(*back).operator_id, "post");
+}
+
 TEST(LinkCodec, RejectsHeadingOutOfRangeAndEmptyBodies) {
   link::Item item;
   item.mutable_pose()->set_heading_ddeg(3600);

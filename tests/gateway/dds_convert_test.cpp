@@ -58,5 +58,67 @@ TEST(GatewayDdsConvert, FarSidePoseHasACircularCovariance) {
   EXPECT_NEAR(back.heading_sd_rad, 0.02, 1e-12);
 }
 
+// An operator's correction and pena-fusion's answer cross whole; NaN is refused, not carried.
+TEST(GatewayDdsConvert, OperatorCorrectionRoundTripsAndRefusesNaN) {
+  pena_dds::OperatorCorrection sample;
+  sample.correction_id("post/12");
+  sample.schema_version(pena_dds::SCHEMA_VERSION);
+  sample.operator_id("post");
+  sample.kind(pena_dds::OPERATOR_TRANSLATE);
+  sample.target_entity_id("ff3");
+  sample.stamp_s(17.25);
+  sample.wrong_point().x_m(1.0);
+  sample.correct_point().y_m(-2.0);
+  sample.seq(12);
+  sample.applied(true);
+  std::string error;
+  const std::optional<OperatorCorrection> link = OperatorCorrectionFromDds(sample, 99.0, &error);
+  ASSERT_TRUE(link) << error;
+  EXPECT_EQ(link->stamp_s, 99.0);
+  const pena_dds::OperatorCorrection back = OperatorCorrectionToDds(*link);
+  EXPECT_EQ(back.correction_id().to_string(), "post/12");
+  EXPECT_EQ(back.operator_id().to_string(), "post");
+  EXPECT_EQ(back.kind(), pena_dds::OPERATOR_TRANSLATE);
+  EXPECT_EQ(back.target_entity_id().to_string(), "ff3");
+  EXPECT_EQ(back.stamp_s(), 17.25);
+  EXPECT_EQ(back.wrong_point().x_m(), 1.0);
+  EXPECT_EQ(back.correct_point().y_m(), -2.0);
+  EXPECT_EQ(back.seq(), 12U);
+  EXPECT_TRUE(back.applied());
+  sample.correct_point().x_m(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_FALSE(OperatorCorrectionFromDds(sample, 99.0, &error));
+  EXPECT_NE(error.find("not finite"), std::string::npos) << error;
+}
+
+// Far-side poses and marks carry the mission time, not the link's wall clock.
+TEST(GatewayDdsConvert, MissionTimeCrossesOnPosesAndMarks) {
+  pena_dds::EntityPose pose = SampleWithCovariance({});
+  pose.stamp_s(42.5);
+  PoseUpdate update = PoseFromDds(pose, 1.7e9);
+  ASSERT_TRUE(update.mission_stamp_s);
+  EXPECT_EQ(PoseToDds(update, 1).stamp_s(), 42.5);
+  update.mission_stamp_s.reset();
+  EXPECT_EQ(PoseToDds(update, 1).stamp_s(), 1.7e9);  // unknown: the wall clock, as before
+
+  pena_dds::Annotation mark;
+  mark.annotation_id("post/3");
+  mark.author_id("post");
+  mark.kind(pena_dds::ANNOTATION_DANGEROUS_AREA);
+  mark.stamp_s(42.5);
+  pena_dds::Point2 corner;
+  for (double x : {0.0, 4.0, 4.0}) {
+    corner.x_m(x);
+    corner.y_m(x > 0 ? 3.0 : 0.0);
+    mark.outline().push_back(corner);
+  }
+  std::string error;
+  const std::optional<Annotation> link = AnnotationFromDds(mark, 1.7e9, &error);
+  ASSERT_TRUE(link) << error;
+  const pena_dds::Annotation back = AnnotationToDds(*link);
+  EXPECT_EQ(back.stamp_s(), 42.5);
+  ASSERT_EQ(back.outline().size(), 3U);
+  EXPECT_EQ(back.outline()[1].x_m(), 4.0);
+}
+
 }  // namespace
 }  // namespace pena::gateway

@@ -1,6 +1,7 @@
 // The PeNa command post page: one WebSocket to pena-console (a snapshot, then deltas), the
 // picture drawn on a canvas in the map frame (x right, y up, metres), and the operator's
-// three-point rotation (paper section 4.1). window.penaConsole exposes the state for tests.
+// gestures (paper section 4.1): three-point rotation, translation, undo, marks, areas.
+// window.penaConsole exposes the state for tests.
 'use strict';
 
 const CHI2_95_2DOF = 5.991;  // 95 % of a 2-D Gaussian lies within this Mahalanobis distance^2
@@ -14,6 +15,7 @@ const state = {
   mapVersion: 0,
   annotations: new Map(),  // id -> annotation
   corrections: [],
+  links: [],               // the radio link's health, one per pena-gateway endpoint reporting here
   operator: '',
   clockOffsetMs: 0,        // server clock - this browser's clock
   messages: [],            // {kind: 'error' | 'ack' | 'info', text}
@@ -23,7 +25,7 @@ const state = {
   poseDdsAgesMs: [],       // the same poses: the console's reception - writer's
 };
 const view = { cx: 0, cy: 0, scale: 20, fitted: false, follow: '' };
-const pick = { active: false, mode: 'rotate', entity: '', points: [] };  // the gesture being clicked
+const pick = { active: false, mode: 'rotate', entity: '', mark: '', points: [] };  // the gesture being clicked
 let socket = null;
 let nextReq = 1;
 let dirty = true;
@@ -69,8 +71,10 @@ function receive(m) {
     for (const e of m.entities) upsertEntity(e);
     state.mapVersion = m.map.version;
     for (const s of m.map.segments) state.segments.set(s[0], s.slice(1));
+    mapChanged = true;
     for (const a of m.annotations) state.annotations.set(a.id, a);
     state.corrections = m.corrections.slice();
+    state.links = (m.links || []).slice();
     state.snapshots++;
     if (!view.fitted) fit();
   } else if (m.type === 'delta') {
@@ -88,9 +92,14 @@ function receive(m) {
       state.mapVersion = m.map.version;
       for (const s of m.map.upsert) state.segments.set(s[0], s.slice(1));
       for (const id of m.map.remove) state.segments.delete(id);
+      mapChanged = true;
     }
     for (const a of m.annotations || []) state.annotations.set(a.id, a);
-    for (const c of m.corrections || []) state.corrections.push(c);
+    for (const c of m.corrections || []) {
+      const at = state.corrections.findIndex((k) => k.id === c.id);
+      if (at >= 0) state.corrections[at] = c; else state.corrections.push(c);
+    }
+    if (m.links) state.links = m.links;
     state.deltas++;
     if (!view.fitted && state.entities.size > 0) fit();
   } else if (m.type === 'error') {
@@ -100,7 +109,7 @@ function receive(m) {
   }
   dirty = true;
   // The side panel follows every 500 ms; at once only for what the operator waits for.
-  if (m.type !== 'delta' || m.annotations || m.corrections) renderPanel();
+  if (m.type !== 'delta' || m.annotations || m.corrections || m.links) renderPanel();
 }
 
 function upsertEntity(e) {
@@ -173,50 +182,98 @@ canvas.addEventListener('wheel', (ev) => {
   dirty = true;
 }, { passive: false });
 
-// ---- the three-point rotation -----------------------------------------------------------------
+// ---- the operator's gestures (paper section 4.1) ----------------------------------------------
 
-const PICK_PROMPTS = ['click the rotation origin on the trail of ', 'click a point in the wrong direction',
-                      'click the same point in the correct direction'];
+// What each gesture asks for, click by click.
+const PICK_PROMPTS = {
+  rotate: ['click the rotation origin on the trail of ', 'click a point in the wrong direction',
+           'click the same point in the correct direction'],
+  translate: ['click the point to move on the trail of ', 'click where it belongs'],
+};
+const PICK_NAMES = { rotate: ['origin', 'wrong', 'correct'], translate: ['point', 'belongs'] };
 
-function startRotation(entity) {
-  if (!state.entities.has(entity)) { note('error', `rotate: unknown entity '${entity}'`); return; }
+function startPick(mode, entity) {
+  if ((mode === 'rotate' || mode === 'translate') && !state.entities.has(entity)) {
+    note('error', `${mode}: unknown entity '${entity}'`);
+    return;
+  }
   pick.active = true;
-  pick.mode = 'rotate';
-  pick.entity = entity;
+  pick.mode = mode;
+  pick.entity = entity || '';
+  pick.mark = '';
   pick.points = [];
   showPrompt();
+  dirty = true;
 }
-
+function startRotation(entity) { startPick('rotate', entity); }
+function startTranslation(entity) { startPick('translate', entity); }
 // The next click on the map places a mark of the chosen kind.
-function startMark() {
-  pick.active = true;
-  pick.mode = 'mark';
-  pick.points = [];
-  showPrompt();
-}
+function startMark() { startPick('mark', ''); }
+// Clicks place the corners of a dangerous area; a click on the first corner (or Enter) closes it.
+function startArea() { startPick('area', ''); }
+// The next click moves the mark `id` there.
+function startMove(id) { startPick('move_mark', ''); pick.mark = id; showPrompt(); }
 
 function retract(id) {
   send({ type: 'retract', id });
+}
+
+// The last rotation or translation in force (not undone, not refused): what Undo takes back.
+function lastInForce() {
+  for (let i = state.corrections.length - 1; i >= 0; --i) {
+    const c = state.corrections[i];
+    if ((c.kind === 'rotate' || c.kind === 'translate') && !c.undone && c.state !== 'refused') return c;
+  }
+  return null;
+}
+function undo() {
+  const c = lastInForce();
+  if (!c) { note('error', 'undo: no correction in force'); return 0; }
+  return send({ type: 'undo', id: c.id });
 }
 
 function cancelRotation() {
   pick.active = false;
   pick.points = [];
   showPrompt();
+  dirty = true;
 }
 
-// Adds one clicked point (map frame); the third sends the request.
+const mm = (v) => Math.round(v * 1000) / 1000;
+
+function closeArea() {
+  if (pick.points.length < 3) { note('error', 'a dangerous area needs at least 3 corners'); return; }
+  const text = document.getElementById('mark-text').value;
+  send({ type: 'annotate', kind: 'dangerous_area', outline: pick.points.map((p) => [mm(p[0]), mm(p[1])]), text });
+  cancelRotation();
+}
+
+// Adds one clicked point (map frame); the last one a gesture needs sends its request.
 function pickPoint(x, y) {
   if (!pick.active) return;
+  if (pick.mode === 'area' && pick.points.length >= 3) {
+    const [fx, fy] = toScreen(pick.points[0][0], pick.points[0][1]);
+    const [cx, cy] = toScreen(x, y);
+    if (Math.hypot(fx - cx, fy - cy) < 10) { closeArea(); return; }
+  }
   pick.points.push([x, y]);
+  const text = document.getElementById('mark-text').value;
   if (pick.mode === 'mark') {
-    const text = document.getElementById('mark-text').value;
     send({ type: 'annotate', kind: document.getElementById('mark-kind').value, position: [x, y], text });
     cancelRotation();
-  } else if (pick.points.length === 3) {
+  } else if (pick.mode === 'move_mark') {
+    send({ type: 'move_mark', id: pick.mark, position: [x, y] });
+    cancelRotation();
+  } else if (pick.mode === 'rotate' && pick.points.length === 3) {
     const [origin, wrong, correct] = pick.points;
     send({ type: 'rotate', entity: pick.entity, origin, wrong, correct });
     cancelRotation();
+  } else if (pick.mode === 'translate' && pick.points.length === 2) {
+    const [point, correct] = pick.points;
+    send({ type: 'translate', entity: pick.entity, point, correct });
+    cancelRotation();
+  } else if (pick.mode === 'area' && pick.points.length === 64) {
+    closeArea();
   } else {
     showPrompt();
   }
@@ -228,30 +285,46 @@ canvas.addEventListener('click', (ev) => {
   const [x, y] = toWorld(ev.offsetX, ev.offsetY);
   pickPoint(x, y);
 });
-window.addEventListener('keydown', (ev) => { if (ev.key === 'Escape') cancelRotation(); });
+window.addEventListener('keydown', (ev) => {
+  if (ev.key === 'Escape') cancelRotation();
+  if (ev.key === 'Enter' && pick.active && pick.mode === 'area') closeArea();
+});
 
 function showPrompt() {
   const p = document.getElementById('prompt');
-  document.getElementById('rotate').classList.toggle('active', pick.active && pick.mode === 'rotate');
-  document.getElementById('mark').classList.toggle('active', pick.active && pick.mode === 'mark');
+  for (const mode of ['rotate', 'translate', 'mark', 'area']) {
+    document.getElementById(mode).classList.toggle('active', pick.active && pick.mode === mode);
+  }
   canvas.classList.toggle('picking', pick.active);
   if (!pick.active) { p.textContent = ''; return; }
+  const n = pick.points.length;
   if (pick.mode === 'mark') {
     p.textContent = `Mark ${document.getElementById('mark-kind').value}: click the map (Esc cancels)`;
-    return;
+  } else if (pick.mode === 'move_mark') {
+    p.textContent = `Move ${pick.mark}: click where it belongs (Esc cancels)`;
+  } else if (pick.mode === 'area') {
+    p.textContent = `Dangerous area: click its corners (${n} so far); click the first corner or press Enter to close (Esc cancels)`;
+  } else {
+    const name = pick.mode === 'rotate' ? 'Rotate' : 'Move';
+    p.textContent = `${name} ${pick.entity}: ${PICK_PROMPTS[pick.mode][n]}${n === 0 ? pick.entity : ''} (Esc cancels)`;
   }
-  const n = pick.points.length;
-  p.textContent = `Rotate ${pick.entity}: ${PICK_PROMPTS[n]}${n === 0 ? pick.entity : ''} (Esc cancels)`;
 }
 
-document.getElementById('rotate').addEventListener('click', () => {
-  if (pick.active) { cancelRotation(); return; }
-  startRotation(document.getElementById('rotate-entity').value);
-});
+for (const [button, mode] of [['rotate', 'rotate'], ['translate', 'translate']]) {
+  document.getElementById(button).addEventListener('click', () => {
+    if (pick.active) { cancelRotation(); return; }
+    startPick(mode, document.getElementById('rotate-entity').value);
+  });
+}
 document.getElementById('mark').addEventListener('click', () => {
   if (pick.active) { cancelRotation(); return; }
   startMark();
 });
+document.getElementById('area').addEventListener('click', () => {
+  if (pick.active) { cancelRotation(); return; }
+  startArea();
+});
+document.getElementById('undo').addEventListener('click', undo);
 document.getElementById('fit').addEventListener('click', fit);
 document.getElementById('follow').addEventListener('change', (ev) => { view.follow = ev.target.value; dirty = true; });
 
@@ -279,23 +352,48 @@ function draw() {
   drawLegend();
 }
 
-function drawMap() {
-  ctx.lineCap = 'round';
+// The walls are drawn into a layer three views wide and high around the view, at the view's
+// scale; panning blits it, and it is drawn again only when the view leaves it, the scale
+// changes or the map changes (a map of 10,000 walls then pans at the display's frame rate).
+const wallLayer = { canvas: document.createElement('canvas'), scale: 0, x0: 0, y0: 0, key: '' };
+let mapChanged = true;
+
+function drawWalls(c, originX, originY) {
+  c.lineCap = 'round';
   for (const observed of [0, 1]) {
-    ctx.beginPath();
+    c.beginPath();
     for (const s of state.segments.values()) {
       if (s[4] !== observed) continue;
-      const [ax, ay] = toScreen(s[0], s[1]);
-      const [bx, by] = toScreen(s[2], s[3]);
-      ctx.moveTo(ax, ay);
-      ctx.lineTo(bx, by);
+      c.moveTo((s[0] - originX) * view.scale, (originY - s[1]) * view.scale);
+      c.lineTo((s[2] - originX) * view.scale, (originY - s[3]) * view.scale);
     }
-    ctx.strokeStyle = observed ? '#111111' : '#9e9e9e';
-    ctx.lineWidth = observed ? 2.2 : 1.6;
-    ctx.setLineDash(observed ? [] : [6, 4]);
-    ctx.stroke();
+    c.strokeStyle = observed ? '#111111' : '#9e9e9e';
+    c.lineWidth = observed ? 2.2 : 1.6;
+    c.setLineDash(observed ? [] : [6, 4]);
+    c.stroke();
   }
-  ctx.setLineDash([]);
+  c.setLineDash([]);
+}
+
+function drawMap() {
+  const w = canvas.width, h = canvas.height;
+  // World coordinates of the view's top-left corner.
+  const left = view.cx - w / 2 / view.scale, top = view.cy + h / 2 / view.scale;
+  const layer = wallLayer;
+  const inside = layer.scale === view.scale && left >= layer.x0 && top <= layer.y0 &&
+                 left + w / view.scale <= layer.x0 + layer.canvas.width / view.scale &&
+                 top - h / view.scale >= layer.y0 - layer.canvas.height / view.scale;
+  if (mapChanged || !inside) {
+    layer.canvas.width = 3 * w;
+    layer.canvas.height = 3 * h;
+    layer.scale = view.scale;
+    layer.x0 = left - w / view.scale;
+    layer.y0 = top + h / view.scale;
+    drawWalls(layer.canvas.getContext('2d'), layer.x0, layer.y0);
+    mapChanged = false;
+  }
+  const dx = Math.round((layer.x0 - left) * view.scale), dy = Math.round((top - layer.y0) * view.scale);
+  ctx.drawImage(layer.canvas, dx, dy);
 }
 
 function drawTrail(e) {
@@ -379,7 +477,8 @@ function drawAnnotation(a) {
 
 function drawPick() {
   if (!pick.active) return;
-  const names = ['origin', 'wrong', 'correct'];
+  const names = PICK_NAMES[pick.mode] || [];
+  ctx.font = '11px system-ui, sans-serif';
   pick.points.forEach((p, i) => {
     const [sx, sy] = toScreen(p[0], p[1]);
     ctx.beginPath();
@@ -387,13 +486,16 @@ function drawPick() {
     ctx.fillStyle = '#ffb300';
     ctx.fill();
     ctx.fillStyle = '#1d2330';
-    ctx.fillText(names[i], sx + 7, sy - 6);
+    if (names[i]) ctx.fillText(names[i], sx + 7, sy - 6);
     if (i > 0) {
-      const [ox, oy] = toScreen(pick.points[0][0], pick.points[0][1]);
+      // A rotation's rays from the origin; a translation's arrow; an area's edges.
+      const from = pick.mode === 'area' ? pick.points[i - 1] : pick.points[0];
+      const [ox, oy] = toScreen(from[0], from[1]);
       ctx.beginPath();
       ctx.moveTo(ox, oy);
       ctx.lineTo(sx, sy);
       ctx.strokeStyle = '#ffb300';
+      ctx.lineWidth = 1.5;
       ctx.stroke();
     }
   });
@@ -438,6 +540,94 @@ function drawLegend() {
     ctx.fillText(text, x + 32, y + 4);
   });
 }
+
+// ---- export --------------------------------------------------------------------------------
+
+const esc = (text) => String(text).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
+const f1 = (v) => v.toFixed(1);
+
+// The picture as the canvas shows it (same view, same symbols), as an SVG document: walls,
+// trails, marks and areas, entities with their 95 % ellipses, the scale bar and a caption.
+function exportSvg() {
+  const w = canvas.width, h = canvas.height, out = [];
+  out.push(`<svg xmlns="http://www.w3.org/2000/svg" width="${w}" height="${h}" viewBox="0 0 ${w} ${h}" font-family="sans-serif">`);
+  out.push(`<rect width="${w}" height="${h}" fill="#ffffff"/>`);
+  for (const observed of [0, 1]) {
+    const d = [];
+    for (const seg of state.segments.values()) {
+      if (seg[4] !== observed) continue;
+      const [ax, ay] = toScreen(seg[0], seg[1]), [bx, by] = toScreen(seg[2], seg[3]);
+      d.push(`M${f1(ax)} ${f1(ay)}L${f1(bx)} ${f1(by)}`);
+    }
+    if (d.length) {
+      out.push(`<path d="${d.join('')}" fill="none" stroke-linecap="round" stroke="${observed ? '#111111' : '#9e9e9e'}" ` +
+               `stroke-width="${observed ? 2.2 : 1.6}"${observed ? '' : ' stroke-dasharray="6 4"'}/>`);
+    }
+  }
+  for (const e of state.entities.values()) {
+    if (e.trail.length < 2) continue;
+    const pts = e.trail.map((p) => toScreen(p[1], p[2]).map(f1).join(',')).join(' ');
+    out.push(`<polyline points="${pts}" fill="none" stroke="${colourOf(e.id)}" stroke-opacity="0.55" stroke-width="1.5"/>`);
+  }
+  for (const a of state.annotations.values()) {
+    if (a.retracted) continue;
+    const [sx, sy] = toScreen(a.x, a.y);
+    if (a.outline && a.outline.length >= 3) {
+      const pts = a.outline.map((p) => toScreen(p[0], p[1]).map(f1).join(',')).join(' ');
+      out.push(`<polygon points="${pts}" fill="rgba(229,57,53,0.18)"/>`);
+    } else if (a.radius_m > 0) {
+      out.push(`<circle cx="${f1(sx)}" cy="${f1(sy)}" r="${f1(a.radius_m * view.scale)}" fill="rgba(229,57,53,0.18)"/>`);
+    }
+    out.push(`<circle cx="${f1(sx)}" cy="${f1(sy)}" r="6" fill="${a.kind === 'victim_found' ? '#d81b60' : '#f9a825'}"/>`);
+    out.push(`<text x="${f1(sx + 8)}" y="${f1(sy + 4)}" font-size="11" fill="#1d2330">${esc(a.text || a.kind)}</text>`);
+  }
+  for (const e of state.entities.values()) {
+    if (!e.pose) continue;
+    const colour = colourOf(e.id), [sx, sy] = toScreen(e.pose.x, e.pose.y), el = ellipseOf(e.pose.cov);
+    if (isFinite(el.a) && isFinite(el.b)) {
+      out.push(`<ellipse cx="${f1(sx)}" cy="${f1(sy)}" rx="${f1(Math.max(el.a * view.scale, 0.5))}" ry="${f1(Math.max(el.b * view.scale, 0.5))}" ` +
+               `transform="rotate(${f1(-el.angle * 180 / Math.PI)} ${f1(sx)} ${f1(sy)})" fill="none" stroke="${colour}" stroke-dasharray="3 3" stroke-width="1.2"/>`);
+    }
+    const hd = e.pose.theta, r = 9;
+    const tri = [0, 2.5, -2.5].map((d) => `${f1(sx + r * Math.cos(hd + d))},${f1(sy - r * Math.sin(hd + d))}`).join(' ');
+    const live = e.state === 'tracking' || e.state === 'degraded';
+    out.push(`<polygon points="${tri}" fill="${live ? colour : '#ffffff'}" stroke="${colour}" stroke-width="2"/>`);
+    out.push(`<text x="${f1(sx + 11)}" y="${f1(sy - 8)}" font-size="12" fill="#1d2330">${esc(e.id)}${e.state === 'tracking' ? '' : ' (' + esc(e.state) + ')'}</text>`);
+  }
+  const target = 160 / view.scale, p10 = Math.pow(10, Math.floor(Math.log10(target)));
+  const length = [5, 2, 1].map((k) => k * p10).find((l) => l <= target) || p10;
+  const px = length * view.scale, y = h - 18;
+  out.push(`<path d="M16 ${y - 5}V${y}H${f1(16 + px)}V${y - 5}" fill="none" stroke="#1d2330" stroke-width="2"/>`);
+  out.push(`<text x="${f1(22 + px)}" y="${y}" font-size="12" fill="#1d2330">${length >= 1 ? length + ' m' : Math.round(length * 100) + ' cm'}</text>`);
+  const when = new Date(Date.now() + state.clockOffsetMs).toISOString();
+  out.push(`<text x="16" y="20" font-size="12" fill="#1d2330">PeNa, ${esc(when)}: ${state.entities.size} entities, ` +
+           `map version ${state.mapVersion}, ${state.segments.size} walls</text>`);
+  out.push('</svg>');
+  return out.join('\n');
+}
+
+// The canvas as PNG (a data URL).
+function exportPng() {
+  draw();
+  return canvas.toDataURL('image/png');
+}
+
+function download(name, href) {
+  const a = document.createElement('a');
+  a.href = href;
+  a.download = name;
+  document.body.appendChild(a);
+  a.click();
+  a.remove();
+}
+
+const stampName = () => new Date(Date.now() + state.clockOffsetMs).toISOString().replace(/[:.]/g, '-');
+document.getElementById('export-png').addEventListener('click', () => download(`pena-${stampName()}.png`, exportPng()));
+document.getElementById('export-svg').addEventListener('click', () => {
+  const url = URL.createObjectURL(new Blob([exportSvg()], { type: 'image/svg+xml' }));
+  download(`pena-${stampName()}.svg`, url);
+  setTimeout(() => URL.revokeObjectURL(url), 10000);
+});
 
 // ---- side panel ------------------------------------------------------------------------------
 
@@ -492,8 +682,13 @@ function renderPanel() {
   };
   list('corrections', state.corrections, (c) => {
     const angle = c.transform ? ` ${(c.transform[2] * 180 / Math.PI).toFixed(1)} deg` : '';
-    return `${c.kind}${angle} of ${c.entity} from ${c.stamp_s.toFixed(1)} s by ${c.operator}`;
-  });
+    const shift = c.kind === 'translate' && c.transform ? ` (${c.transform[0].toFixed(2)}, ${c.transform[1].toFixed(2)}) m` : '';
+    const what = c.kind === 'undo' ? `undo of ${c.undoes}` : `${c.kind}${c.kind === 'rotate' ? angle : shift}`;
+    const answer = c.state === 'refused' ? `refused: ${c.refusal}` : c.state;
+    return `${c.id}: ${what} of ${c.entity} from ${c.stamp_s.toFixed(1)} s by ${c.operator}: ${answer}${c.undone ? ', undone' : ''}`;
+  }, (c) => `correction-${c.state}${c.undone ? ' correction-undone' : ''}`);
+  list('links', state.links, linkText, (l) => (l.peer_alive && l.report_age_s < 5 ? 'link-up' : 'link-down'));
+  if (!state.links.length) document.getElementById('links').innerHTML = '<li>no pena-gateway reports on this DDS domain</li>';
   // Rebuilt only when the marks change: a button must stay put while the operator clicks it.
   const marks = document.getElementById('annotations');
   const shown = [...state.annotations.values()].filter((m) => !m.retracted);
@@ -506,6 +701,15 @@ function renderPanel() {
   list('messages', state.messages.slice().reverse(), (m) => m.text, (m) => m.kind);
 }
 
+// One gateway endpoint's report: is the far end heard, how much of the budget is used, what waits.
+function linkText(l) {
+  const heard = l.peer_heard_age_s < 0 ? 'never heard' : `heard ${l.peer_heard_age_s.toFixed(1)} s ago`;
+  const up = l.report_age_s >= 5 ? `no report for ${l.report_age_s.toFixed(0)} s` : l.peer_alive ? 'up' : 'DOWN';
+  return `${l.id}: ${up}, far end ${heard}, sent ${(l.sent_bit_s / 1000).toFixed(1)} of ` +
+    `${(l.budget_bit_s / 1000).toFixed(1)} kbit/s, ${l.pending_reliable} marks/corrections and ` +
+    `${l.pending_map_updates} map updates waiting, ${l.frames_rejected} frames rejected`;
+}
+
 // One mark in the side list, with its retract button.
 function markItem(a) {
   const li = document.createElement('li');
@@ -516,6 +720,11 @@ function markItem(a) {
   button.className = 'retract';
   button.addEventListener('click', () => retract(a.id));
   li.appendChild(button);
+  const move = document.createElement('button');
+  move.textContent = 'move';
+  move.className = 'move';
+  move.addEventListener('click', () => startMove(a.id));
+  li.appendChild(move);
   return li;
 }
 
@@ -534,8 +743,9 @@ function frame() {
 setInterval(() => { renderPanel(); dirty = true; }, 500);
 window.addEventListener('resize', resize);
 
-window.penaConsole = { state, view, pick, send, toScreen, toWorld, startRotation, startMark, retract, pickPoint, fit,
-                       ellipseOf, redraw: () => { draw(); dirty = false; } };
+window.penaConsole = { state, view, pick, send, toScreen, toWorld, startRotation, startTranslation, startMark, startArea,
+                       startMove, retract, undo, lastInForce, pickPoint, closeArea, fit, exportSvg, exportPng,
+                       ellipseOf, redraw: () => { draw(); dirty = false; }, mapChanged: () => { mapChanged = true; } };
 resize();
 connect();
 requestAnimationFrame(frame);

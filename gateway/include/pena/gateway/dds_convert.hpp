@@ -26,17 +26,18 @@ inline constexpr unsigned kAnnotationIdShift = 4;
 // `stamp_s` is the sample's wall-clock source time.
 PoseUpdate PoseFromDds(const pena_dds::EntityPose& sample, double stamp_s);
 // The far side's pose sample: odom_from_body = world_from_body, a diagonal covariance from the
-// sigmas (the position's a circle), POSE_MATCHED, stamp_s = the wall-clock stamp (mission time
-// does not cross), `seq` counted by the publisher.
+// sigmas (the position's a circle), POSE_MATCHED, stamp_s = the mission time (the wall-clock
+// stamp when the sender did not know it), `seq` counted by the publisher.
 pena_dds::EntityPose PoseToDds(const PoseUpdate& pose, std::uint64_t seq);
 
 // An annotation whose id is "<author_id>/<n>" (n decimal, < 2^60); kinds VICTIM_FOUND and
-// DANGEROUS_AREA become alarms (sent at once). Radius and outline are not carried. nullopt and
+// DANGEROUS_AREA become alarms (sent at once). Mission time, radius and outline are carried
+// (1 ms, 1 cm). nullopt and
 // `error` naming the field for anything the link cannot represent.
 std::optional<Annotation> AnnotationFromDds(const pena_dds::Annotation& sample, double stamp_s,
                                             std::string* error);
 // The far side's sample: id "<entity>/<n>", kind and retracted from the link id, stamp_s = the
-// wall-clock stamp. Throws std::length_error naming the field for a name or text too long.
+// mission time (the wall-clock stamp when the sender did not know it). Throws std::length_error naming the field for a name or text too long.
 pena_dds::Annotation AnnotationToDds(const Annotation& annotation);
 
 // A fusion correction of kind CORRECTION_MAP_FROM_ODOM (world_from_local = map_from_odom,
@@ -44,7 +45,14 @@ pena_dds::Annotation AnnotationToDds(const Annotation& annotation);
 // nullopt and `error`.
 std::optional<Correction> CorrectionFromDds(const pena_dds::Correction& sample, double stamp_s,
                                             std::string* error);
-// The far side's sample: CORRECTION_MAP_FROM_ODOM, seq = version, confidence 1.
+// The far side's sample: CORRECTION_MAP_FROM_ODOM, seq = version, confidence 1, operator_id.
 pena_dds::Correction CorrectionToDds(const Correction& correction);
+
+// An operator's correction or pena-fusion's answer to it, whole (points at 1 mm, stamp_s at
+// 1 us); nullopt and `error` for an empty correction_id or a non-finite number.
+std::optional<OperatorCorrection> OperatorCorrectionFromDds(const pena_dds::OperatorCorrection& sample,
+                                                            double stamp_s, std::string* error);
+// The far side's sample. Throws std::length_error naming the field for a text too long.
+pena_dds::OperatorCorrection OperatorCorrectionToDds(const OperatorCorrection& correction);
 
 }  // namespace pena::gateway

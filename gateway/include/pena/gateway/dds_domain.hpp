@@ -15,6 +15,7 @@
 
 #include "dds_participant.hpp"
 #include "pena/gateway/domain_side.hpp"
+#include "pena_dds/operator.h"
 
 namespace pena::gateway {
 
@@ -25,9 +26,11 @@ enum class DdsClass {
   kGlobalMap,   // pena/fusion/global_map_delta and _snapshot (map id "global")
   kAnnotation,  // pena/annotation (alarms: victim found, dangerous area)
   kCorrection,  // pena/fusion/correction (CORRECTION_MAP_FROM_ODOM only)
+  kOperatorCorrection,  // pena/operator/correction (a console's, and pena-fusion's answers)
 };
 
-// "pose", "entity_map", "global_map", "annotation", "correction"; nullopt for anything else.
+// "pose", "entity_map", "global_map", "annotation", "correction", "operator_correction"; nullopt
+// for anything else.
 std::optional<DdsClass> ParseDdsClass(const std::string& name);
 const char* ToString(DdsClass dds_class);
 
@@ -87,6 +90,8 @@ class DdsDomain : public DomainSide {
   // Readers and writers matched with remote endpoints (for "wait until discovered").
   int matched_readers() const;
   int matched_writers() const;
+  // Publishes the link's health for the operator's console (pena/gateway/link_health).
+  void PublishLinkHealth(const pena_dds::LinkHealth& health);
 
  private:
   struct Impl;

@@ -92,7 +92,7 @@ class LinkScheduler {
 
  private:
   using Timer = ResendTimer;
-  struct PendingAnnotation { Annotation annotation; Timer timer; };
+  struct PendingAnnotation { DomainItem item; Timer timer; };  // Annotation or OperatorCorrection
   struct PendingCorrection { Correction correction; std::uint64_t seq = 0; bool acked = false; Timer timer; };
   struct PoseSlot { PoseUpdate pose; bool sent = false; };
   struct PendingDelta {

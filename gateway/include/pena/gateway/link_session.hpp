@@ -55,6 +55,9 @@ class LinkSession {
 
   // True if the peer was heard within outage_timeout_s.
   bool peer_alive(double now_s) const;
+  // When the peer was last heard (the clock of OnFrame; < 0 before the first frame).
+  double last_heard_s() const { return last_heard_s_ < -1e8 ? -1.0 : last_heard_s_; }
+  const LinkOptions& options() const { return options_; }
   const LinkStats& stats() const;
   const LinkScheduler& scheduler() const { return scheduler_; }
   const LinkReceiver& receiver() const { return receiver_; }
