@@ -16,6 +16,7 @@ packages=(
   libcli11-dev libnanoflann-dev zlib1g-dev libsodium-dev
   libfastrtps-dev fastddsgen
   libboost-dev nlohmann-json3-dev
+  clang libclang-rt-14-dev  # the sanitizer and libFuzzer build (scripts/sanitizers.sh, scripts/fuzz.sh)
 )
 
 # The console's browser test (tests/console): Debian's chromium (large, so only when wanted) and
