@@ -23,6 +23,8 @@ PENA_TARGETS="${targets[*]}" PENA_ASAN_BUILD_ONLY=1 bash scripts/sanitizers.sh
 work=${PENA_FUZZ_WORK:-$build_dir/fuzz-work}
 
 export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1
+# The file readers' targets write every input to a file: into memory where the machine allows.
+if [[ -z ${TMPDIR:-} && -w /dev/shm ]]; then export TMPDIR=/dev/shm; fi
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 failed=()
 for target in "${targets[@]}"; do
