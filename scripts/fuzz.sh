@@ -5,7 +5,8 @@
 # per target (runs, cov, ft, corpus) and exits 1 if any target crashed; the crashing input is
 # left in the work dir (crash-*, leak-*, timeout-*, oom-*) to add to tests/fuzz/corpus/<target>/.
 # usage: scripts/fuzz.sh [SECONDS] [TARGET...]     (default 60 s, every target)
-# Environment: PENA_ASAN_BUILD_DIR (default build-asan), PENA_FUZZ_WORK (default
+# Environment: PENA_FUZZ_SKIP (targets a run over all leaves out), PENA_ASAN_BUILD_DIR
+# (default build-asan), PENA_FUZZ_WORK (default
 # <build dir>/fuzz-work: the corpus each run grows, kept between runs), PENA_JOBS.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,7 +17,13 @@ all=(fuzz_carmen fuzz_mission_log fuzz_relations fuzz_tum fuzz_line_csv fuzz_svg
      fuzz_line_map_codec fuzz_link_frame fuzz_link_session fuzz_link_open fuzz_service_config
      fuzz_from_dds fuzz_dds_convert fuzz_browser_request)
 targets=("$@")
-((${#targets[@]})) || targets=("${all[@]}")
+if ((${#targets[@]} == 0)); then
+  # PENA_FUZZ_SKIP: targets left out of a run over all (open findings, docs/fuzzing.md).
+  for target in "${all[@]}"; do
+    [[ " ${PENA_FUZZ_SKIP:-} " == *" $target "* ]] && echo "fuzz: $target skipped (PENA_FUZZ_SKIP)" && continue
+    targets+=("$target")
+  done
+fi
 
 build_dir=${PENA_ASAN_BUILD_DIR:-build-asan}
 PENA_TARGETS="${targets[*]}" PENA_ASAN_BUILD_ONLY=1 bash scripts/sanitizers.sh
