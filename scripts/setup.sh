@@ -17,6 +17,7 @@ packages=(
   libfastrtps-dev fastddsgen
   libboost-dev nlohmann-json3-dev
   lintian help2man adduser  # the Debian packages: their test, manual pages, pena-services' postinst
+  clang libclang-rt-14-dev  # the sanitizer and libFuzzer build (scripts/sanitizers.sh, scripts/fuzz.sh)
 )
 
 # The console's browser test (tests/console): Debian's chromium (large, so only when wanted) and

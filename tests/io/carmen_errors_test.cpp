@@ -124,6 +124,29 @@ TEST(CarmenErrors, TruncatedGzipReportsTheLineReached) {
   EXPECT_THROW(ReadAll(*OpenCarmenLog(cut, skip)), InputError);
 }
 
+// A NUL byte is a byte like any other: the line holding it is the malformed one, the lines
+// around it read as written, and a file ending in NULs without a newline ends cleanly (the input
+// tests/fuzz found: the line reader lost the rest of such a line, or read before an empty one).
+TEST(CarmenErrors, NulByteIsAnErrorOnItsOwnLine) {
+  const std::string nul_in_number = std::string("FLASER 3 1 2") + '\0' + "3 0 0 0 0 0 0 2.0 h 2.0\n";
+  const auto path = WriteText("nul.clf", FlaserLine(181, "3", "1.0") + nul_in_number +
+                                             FlaserLine(181, "3", "3.0"));
+  try {
+    ReadAll(*OpenCarmenLog(path));
+    ADD_FAILURE() << "a NUL byte inside a number read without error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.line(), 2u) << error.what();
+  }
+  ReadOptions skip;
+  skip.skip_malformed = true;
+  auto source = OpenCarmenLog(path, skip);
+  EXPECT_EQ(ReadAll(*source).size(), 2u);
+  EXPECT_EQ(source->skipped(), 1u);
+
+  const auto tail = WriteText("nul_tail.clf", FlaserLine(181, "3", "1.0") + std::string(3, '\0'));
+  EXPECT_EQ(ReadAll(*OpenCarmenLog(tail)).size(), 1u);
+}
+
 TEST(CarmenErrors, UnrecognisedFormatIsRefused) {
   const auto path = WriteText("table.csv", "id,x1,y1,x2,y2\n1,0,0,1,1\n");
   const InputError error = ReadExpectingError(path);

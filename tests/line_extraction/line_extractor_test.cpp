@@ -115,7 +115,13 @@ TEST(LineExtraction, IgnoresSpeckleNoise) {
   std::mt19937 random(7);
   std::uniform_int_distribution<int> col(0, grid.occupancy.cols - 1);
   std::uniform_int_distribution<int> row(0, grid.occupancy.rows - 1);
-  for (int k = 0; k < 100; ++k) grid.occupancy.at<std::uint8_t>(row(random), col(random)) = 255;
+  for (int k = 0; k < 100; ++k) {
+    // Column first, then row, in two statements: the order of a call's arguments is unspecified
+    // (gcc and clang differ), and the speckles must land on the same cells with every compiler.
+    const int c = col(random);
+    const int r = row(random);
+    grid.occupancy.at<std::uint8_t>(r, c) = 255;
+  }
   const std::vector<LineSegment> lines = ExtractLines(grid);
   const eval::LineMapErrorSummary score = Score(lines, walls);
   EXPECT_GT(score.coverage, 0.95);

@@ -2,7 +2,6 @@
 
 #include <zlib.h>
 
-#include <array>
 #include <cerrno>
 #include <cstring>
 #include <system_error>
@@ -38,23 +37,36 @@ GzLineReader::~GzLineReader() {
 
 bool GzLineReader::ReadLine(std::string& line) {
   line.clear();
-  std::array<char, 8192> chunk;  // filled by gzgets before any read
-  bool got_any = false;
-  while (gzgets(AsGz(file_), chunk.data(), static_cast<int>(chunk.size())) != nullptr) {
-    got_any = true;
-    const std::size_t length = std::strlen(chunk.data());
-    line.append(chunk.data(), length);
-    if (length > 0 && chunk[length - 1] == '\n') break;
+  // Split on '\n' ourselves (not gzgets, whose C string loses everything after a NUL byte): a
+  // line keeps any byte it holds, and the parsers name what is wrong with it.
+  while (true) {
+    const std::size_t newline = buffer_.find('\n', next_);
+    if (newline != std::string::npos) {
+      line.append(buffer_, next_, newline - next_);
+      next_ = newline + 1;
+      break;
+    }
+    line.append(buffer_, next_, std::string::npos);
+    if (!Fill()) {
+      // The data ran out: cleanly, or a truncated or corrupt gzip stream (checked first, so a
+      // cut line is not handed out as if whole).
+      ThrowIfStreamError(line_number_ + 1);
+      if (line.empty()) return false;
+      break;
+    }
   }
-  // gzgets stops early both at the clean end and when the deflate stream is cut: a line without
-  // its newline may be the remains of a truncated file, so check before handing it out.
-  const std::size_t reached = line_number_ + 1;
-  if (line.empty() || line.back() != '\n') ThrowIfStreamError(reached);
-  if (!got_any) return false;
-  line_number_ = reached;
-  if (line.back() == '\n') line.pop_back();
+  ++line_number_;
   if (!line.empty() && line.back() == '\r') line.pop_back();
   return true;
+}
+
+bool GzLineReader::Fill() {
+  constexpr std::size_t kChunkBytes = 1 << 16;
+  buffer_.resize(kChunkBytes);
+  next_ = 0;
+  const int count = gzread(AsGz(file_), buffer_.data(), static_cast<unsigned>(kChunkBytes));
+  buffer_.resize(count > 0 ? static_cast<std::size_t>(count) : 0);
+  return count > 0;
 }
 
 void GzLineReader::ThrowIfStreamError(std::size_t line) const {

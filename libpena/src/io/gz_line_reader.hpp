@@ -7,7 +7,7 @@
 
 namespace pena::io::detail {
 
-// Line-numbered reader over gzopen/gzgets. Throws InputError on a missing file (line 0) and on
+// Line-numbered reader over gzopen/gzread. Throws InputError on a missing file (line 0) and on
 // truncated or corrupt gzip data (at the line being read when the data ran out).
 class GzLineReader {
  public:
@@ -25,10 +25,14 @@ class GzLineReader {
  private:
   // Throws if zlib reports an error; `line` is the line being read when it happened.
   void ThrowIfStreamError(std::size_t line) const;
+  // Reads the next chunk of the (decompressed) file into buffer_; false at the end or an error.
+  bool Fill();
 
   std::filesystem::path path_;
   void* file_ = nullptr;  // gzFile, kept opaque so zlib.h stays out of the other sources
   std::size_t line_number_ = 0;
+  std::string buffer_;     // decompressed bytes not yet handed out start at next_
+  std::size_t next_ = 0;
 };
 
 // Up to `max_bytes` of the file's (decompressed) start; empty if it cannot be read.

@@ -121,11 +121,12 @@ std::vector<EndMeasurement> MeasureEnds(const std::vector<geometry::Segment2>& p
     return (end_m.array() >= low.array() - options.window_m).all() &&
            (end_m.array() <= high.array() + options.window_m).all();
   };
-  const auto [low_rad, high_rad] = BearingSpan(map_points, origin_m, heading_rad);
+  // A pair, not a structured binding: lambdas capture those only from clang 16 on.
+  const std::pair<double, double> span_rad = BearingSpan(map_points, origin_m, heading_rad);
   // The laser must have been able to see past an end: its bearing inside the span by past_rad.
   const auto inside_view = [&](const Eigen::Vector2d& point) {
     const double b = geometry::NormalizeAngle(Bearing(origin_m, point) - heading_rad);
-    return b >= low_rad + options.past_rad && b <= high_rad - options.past_rad;
+    return b >= span_rad.first + options.past_rad && b <= span_rad.second - options.past_rad;
   };
   for (std::size_t i = 0; i < plan.size() && i < ends.size(); ++i) {
     const geometry::Segment2& s = plan[i];

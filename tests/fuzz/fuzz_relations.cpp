@@ -1,0 +1,16 @@
+// .relations files (docs/formats.md): ReadRelations or InputError.
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_file.hpp"
+#include "pena/io/input_error.hpp"
+#include "pena/io/trajectory_io.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static pena::fuzz::FuzzFile file("log.relations");
+  try {
+    (void)pena::io::ReadRelations(file.Write(data, size));
+  } catch (const pena::io::InputError&) {
+  }
+  return 0;
+}
