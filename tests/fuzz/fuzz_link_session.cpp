@@ -2,7 +2,7 @@
 // (link_codec FromProto), map fragments and resync, delivered to a domain that applies map
 // changes. The input is a sequence of datagram payloads, each a 2-byte big-endian length and
 // that many bytes, framed with a valid CRC (so the fuzzer reaches the envelope parser) and fed
-// to a fresh open session 10 ms apart. A rejection must say why.
+// to a fresh open session, one every 10 ms. A rejection must say why.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
