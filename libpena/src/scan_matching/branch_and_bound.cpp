@@ -10,14 +10,8 @@ namespace {
 
 struct Node {
   int angle, x, y, level;  // covers candidates [x, x + 2^level) x [y, y + 2^level)
-  long hits_bound;         // the max-grid sum: no candidate of the node scores more
-  double bound;            // hits_bound times the prior penalty's maximum over the node
+  long bound;              // the max-grid sum: no candidate of the node scores more
 };
-
-// Relative slack on an inner node's penalised bound: exp() is not guaranteed to be monotone to
-// the last bit, so without it a rounding could make a bound a hair lower than a candidate's
-// ranking. Applied only with the penalty on (off, the bound is the integer sum, exactly).
-constexpr double kPenaltySlack = 1.0 + 1e-9;
 
 class Search {
  public:
@@ -29,9 +23,8 @@ class Search {
     }
   }
 
-  // The node with its bound: the max-grid sum times the prior penalty at the node's closest
-  // candidate to the prior (the penalty's maximum over the node), so the bound stays an upper
-  // bound of every candidate's ranking. A leaf's bound is exactly its ranking.
+  // The node with its bound: the max-grid sum, an upper bound of every candidate's score. A
+  // leaf's bound is exactly its score.
   Node MakeNode(int angle, int x, int y, int level) {
     ++scored_;
     long sum = 0;
@@ -40,16 +33,7 @@ class Search {
     for (const auto& cell : cells_[static_cast<std::size_t>(angle)]) {
       sum += max_grids_.At(level, cell.x() + dx, cell.y() + dy);
     }
-    Node node{angle, x, y, level, sum, 0.0};
-    if (level == 0) {
-      node.bound = MakeCandidate(grid_, angle, x, y, sum).ranking;
-    } else {
-      const auto [xy_sq, theta_sq] = MinOffsetsSq(node);
-      const bool penalised = grid_.penalty_per_xy_step_sq > 0.0 || grid_.penalty_per_theta_step_sq > 0.0;
-      node.bound = static_cast<double>(sum) * PriorPenalty(grid_, xy_sq, theta_sq) *
-                   (penalised ? kPenaltySlack : 1.0);
-    }
-    return node;
+    return Node{angle, x, y, level, sum};
   }
 
   // The smallest squared xy and heading index offsets from the prior over the node's candidates.
@@ -72,10 +56,10 @@ class Search {
   }
 
   void Explore(const Node& node) {
-    if (node.bound < best_.ranking) return;
-    if (node.bound == best_.ranking && MinDistanceSq(node) > best_.distance_sq) return;
+    if (node.bound < best_.score) return;
+    if (node.bound == best_.score && MinDistanceSq(node) > best_.distance_sq) return;
     if (node.level == 0) {
-      const Candidate candidate = MakeCandidate(grid_, node.angle, node.x, node.y, node.hits_bound);
+      const Candidate candidate = MakeCandidate(grid_, node.angle, node.x, node.y, node.bound);
       if (Better(candidate, best_)) best_ = candidate;
       return;
     }

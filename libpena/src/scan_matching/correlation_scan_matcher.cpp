@@ -44,14 +44,6 @@ void ValidateOptions(const CorrelationMatcherOptions& options) {
   Require(options.refine_iterations >= 0, "refine_iterations", " (or 0)",
           options.refine_iterations);
   // NaN fails both checks as well.
-  Require(options.prior_translation_weight_per_m >= 0.0 &&
-              std::isfinite(options.prior_translation_weight_per_m),
-          "prior_translation_weight_per_m", " 1/m (or 0: off), finite",
-          options.prior_translation_weight_per_m);
-  Require(options.prior_rotation_weight_per_rad >= 0.0 &&
-              std::isfinite(options.prior_rotation_weight_per_rad),
-          "prior_rotation_weight_per_rad", " 1/rad (or 0: off), finite",
-          options.prior_rotation_weight_per_rad);
 }
 
 void ValidateWindow(const SearchWindow& window, const CorrelationMatcherOptions& options) {

@@ -57,27 +57,6 @@ long WeightAt(const HitGrid& hits, const Points2& scan, const geometry::Pose2& r
   return weight;
 }
 
-double ExactGradedScore(const NearestNeighbours& neighbours, double threshold_m, const Points2& scan,
-                        const geometry::Pose2& reference_from_scan) {
-  const double threshold_sq = threshold_m * threshold_m;
-  double score = 0.0;
-  for (const auto& point : scan) {
-    const Eigen::Vector2d moved = geometry::TransformPoint(reference_from_scan, point);
-    std::uint32_t index = 0;
-    double distance_sq = 0.0;
-    if (!neighbours.Find(moved, index, distance_sq) || distance_sq > threshold_sq) continue;
-    // Along the surface normal, as the refinement measures it: the distance to the nearest
-    // sample alone depends on where between two samples the point falls.
-    const Eigen::Vector2d& normal = neighbours.normal(index);
-    if (!normal.isZero()) {
-      const double along_normal = normal.dot(moved - neighbours.point(index));
-      distance_sq = along_normal * along_normal;
-    }
-    score += 1.0 - distance_sq / threshold_sq;
-  }
-  return score;
-}
-
 Refinement RefineLeastSquares(const NearestNeighbours& neighbours,
                               const CorrelationMatcherOptions& options, const Points2& scan,
                               const geometry::Pose2& reference_from_scan) {
@@ -115,12 +94,7 @@ MatchResult Finish(const NearestNeighbours& neighbours, const HitGrid& hits,
     const Refinement refinement = RefineLeastSquares(neighbours, options, scan, result.grid_pose);
     // Least squares polishes the grid pose; it is kept unless it lowers the score (a false pairing
     // pulled it away), so its reach is not tied to the grid step.
-    const bool keep =
-        options.exact_refine_check
-            ? ExactGradedScore(neighbours, options.threshold_m, scan, refinement.reference_from_scan) >=
-                  ExactGradedScore(neighbours, options.threshold_m, scan, result.grid_pose)
-            : WeightAt(hits, scan, refinement.reference_from_scan) >= result.weight;
-    if (keep) {
+    if (WeightAt(hits, scan, refinement.reference_from_scan) >= result.weight) {
       result.reference_from_scan = refinement.reference_from_scan;
     }
     result.information = refinement.information;

@@ -26,13 +26,6 @@ int CountHits(const HitGrid& hits, const Points2& scan, const geometry::Pose2& r
 // The searched score (sum of cell weights) at a pose.
 long WeightAt(const HitGrid& hits, const Points2& scan, const geometry::Pose2& reference_from_scan);
 
-// The graded score (sum of 1 - (d / threshold)^2 over scan points within the threshold of a
-// reference point) from the exact distance d, not read from the hit grid's cells: along the
-// nearest reference point's normal (the refinement's residual), or to the point itself where it
-// has none (a corner, an isolated point).
-double ExactGradedScore(const NearestNeighbours& neighbours, double threshold_m, const Points2& scan,
-                        const geometry::Pose2& reference_from_scan);
-
 // Builds the MatchResult of a search's best candidate, refinement included.
 MatchResult Finish(const NearestNeighbours& neighbours, const HitGrid& hits,
                    const CorrelationMatcherOptions& options, const Points2& scan, const WindowGrid& grid,

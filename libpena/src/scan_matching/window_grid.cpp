@@ -25,15 +25,11 @@ WindowGrid MakeWindowGrid(const SearchWindow& window, const CorrelationMatcherOp
   grid.step_cells = static_cast<int>(std::lround(window.step_xy_m / resolution_m));
   grid.step_xy_m = grid.step_cells * resolution_m;
   grid.step_theta_rad = window.step_theta_rad;
-  const double xy = options.prior_translation_weight_per_m * grid.step_xy_m;
-  const double theta = options.prior_rotation_weight_per_rad * grid.step_theta_rad;
-  grid.penalty_per_xy_step_sq = xy * xy;
-  grid.penalty_per_theta_step_sq = theta * theta;
   return grid;
 }
 
 bool Better(const Candidate& a, const Candidate& b) {
-  if (a.ranking != b.ranking) return a.ranking > b.ranking;
+  if (a.score != b.score) return a.score > b.score;
   return std::tie(a.distance_sq, a.angle, a.x, a.y) < std::tie(b.distance_sq, b.angle, b.x, b.y);
 }
 
@@ -44,18 +40,8 @@ long DistanceSq(const WindowGrid& grid, int angle, int x, int y) {
   return da * da + dx * dx + dy * dy;
 }
 
-double PriorPenalty(const WindowGrid& grid, long xy_sq, long theta_sq) {
-  return std::exp(-(grid.penalty_per_xy_step_sq * static_cast<double>(xy_sq) +
-                    grid.penalty_per_theta_step_sq * static_cast<double>(theta_sq)));
-}
-
 Candidate MakeCandidate(const WindowGrid& grid, int angle, int x, int y, long score) {
-  const long dx = x - grid.center_x;
-  const long dy = y - grid.center_y;
-  const long da = angle - grid.center_angle;
-  return {angle, x, y, score,
-          static_cast<double>(score) * PriorPenalty(grid, dx * dx + dy * dy, da * da),
-          DistanceSq(grid, angle, x, y)};
+  return {angle, x, y, score, DistanceSq(grid, angle, x, y)};
 }
 
 std::vector<Eigen::Vector2i> DiscretizeScan(const HitGrid& hits, const Points2& scan,

@@ -18,33 +18,23 @@ struct WindowGrid {
   int step_cells = 1;
   double step_xy_m = 0.0;
   double step_theta_rad = 0.0;
-  // The prior penalty per squared index offset: (w_t * step_xy_m)^2 and (w_r * step_theta_rad)^2
-  // (0: off, every factor is exactly 1 and the ranking is the score).
-  double penalty_per_xy_step_sq = 0.0;
-  double penalty_per_theta_step_sq = 0.0;
 };
 
 // A scored candidate; the total order Better() makes every search agree on ties.
 struct Candidate {
   int angle = 0, x = 0, y = 0;
   long score = -1;  // sum of hit-grid weights
-  double ranking = -1.0;  // score times the prior penalty (the score itself when it is off)
   long distance_sq = 0;  // squared centred index distance to the prior
 };
 
 WindowGrid MakeWindowGrid(const SearchWindow& window, const CorrelationMatcherOptions& options);
 
-// Higher ranking first; on ties the candidate nearer the prior, then the lower indices.
+// Higher score first; on ties the candidate nearer the prior, then the lower indices.
 bool Better(const Candidate& a, const Candidate& b);
 
 long DistanceSq(const WindowGrid& grid, int angle, int x, int y);
 
-// The prior penalty exp(-((w_t |dt|)^2 + (w_r |dtheta|)^2)) for squared index offsets from the
-// prior: xy_sq = dx^2 + dy^2 (in steps), theta_sq = dangle^2 (in steps). Non-increasing in both,
-// so at a region's closest point to the prior it is the region's maximum.
-double PriorPenalty(const WindowGrid& grid, long xy_sq, long theta_sq);
-
-// A candidate with its distance to the prior and its penalised ranking.
+// A candidate with its distance to the prior.
 Candidate MakeCandidate(const WindowGrid& grid, int angle, int x, int y, long score);
 
 // Cells of the scan rotated to heading index `angle` and placed at the lowest xy offset.

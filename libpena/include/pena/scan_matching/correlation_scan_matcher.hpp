@@ -23,17 +23,6 @@ struct CorrelationMatcherOptions {
   // by the count alone. In clutter, eq. 2 saturates over a wide range of poses and the search
   // then follows the prior; the graded score keeps a single peak. MatchResult::score stays eq. 2.
   bool graded = true;
-  // Off by default (docs/scan-matching.md). The refined pose replaces the grid pose unless it
-  // lowers the graded score. false: that score is read from the hit grid (2 cm cells, so a
-  // sub-cell polish often reads as a loss and the output falls back to the grid pose, up to half
-  // a step off). true: the score is computed from the exact point-to-line distances.
-  bool exact_refine_check = false;
-  // Off by default (0; docs/scan-matching.md). Cartographer's real-time correlative matcher: a
-  // candidate's ranking score is multiplied by exp(-((w_t * |t - t_prior|)^2 + (w_r *
-  // |theta - theta_prior|)^2)), so among nearly equal peaks the one nearer the prior wins. Both
-  // searches apply it (branch and bound with a bound that stays admissible). Units: 1/m, 1/rad.
-  double prior_translation_weight_per_m = 0.0;
-  double prior_rotation_weight_per_rad = 0.0;
 };
 
 // The searched poses: the prior in the middle, full extents (the paper: 60 cm x 36 cm x 3 deg at
