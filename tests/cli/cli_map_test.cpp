@@ -124,9 +124,9 @@ TEST(CliMap, SlamSettingsAreCheckedByName) {
   EXPECT_NE(unknown.exit_code, 0);
   EXPECT_EQ(std::count(unknown.err.begin(), unknown.err.end(), '\n'), 1) << unknown.err;
   EXPECT_NE(unknown.err.find("slam.no_such_option"), std::string::npos) << unknown.err;
-  const PenaRun invalid = RunPena(map + " --set slam.heading_prior_sigma_rad=-1");
+  const PenaRun invalid = RunPena(map + " --set slam.loop_sigma_rad=-1");
   EXPECT_NE(invalid.exit_code, 0);
-  EXPECT_NE(invalid.err.find("slam.heading_prior_sigma_rad"), std::string::npos) << invalid.err;
+  EXPECT_NE(invalid.err.find("slam.loop_sigma_rad"), std::string::npos) << invalid.err;
   // With the poses given the SLAM does not run; the setting is still checked.
   const PenaRun unused = RunPena(map + " --trajectory " + (sim / "ff1" / "truth.tum").string() +
                                  " --set slam.no_such_option=1");

@@ -80,7 +80,6 @@ void PrintSlam(const MapRun& run) {
   const slam::SlamCounts& c = *run.slam;
   std::cout << "slam: " << c.keyframes << " keyframes, " << c.loop_checks << " loop checks, "
             << c.loop_closures << " closures kept (" << c.loop_rejected << " dropped), "
-            << c.local_matches << " of " << c.local_checks << " scan-to-submap matches kept, "
             << Fixed(run.slam_wall_s, 2) << " s\n";
 }
 

@@ -44,13 +44,10 @@ SettingTargets SlamTargets(slam::SlamOptions& o) {
                      {"loop_sigma_m", &o.loop_sigma_m},
                      {"loop_sigma_rad", &o.loop_sigma_rad},
                      {"loop_weak_sigma_max_m", &o.loop_weak_sigma_max_m},
-                     {"max_loop_chi2", &o.max_loop_chi2},
-                     {"heading_prior_sigma_rad", &o.heading_prior_sigma_rad}};
+                     {"max_loop_chi2", &o.max_loop_chi2}};
   targets.ints = {{"submap_keyframes", &o.submap_keyframes},
                   {"loop_check_every", &o.loop_check_every}};
-  targets.flags = {{"confirm_reference", &o.confirm_reference},
-                   {"local_matching", &o.local_matching},
-                   {"reject_window_edge", &o.reject_window_edge}};
+  targets.flags = {{"reject_window_edge", &o.reject_window_edge}};
   return targets;
 }
 

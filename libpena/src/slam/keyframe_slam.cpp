@@ -26,14 +26,13 @@ double Distance(const Pose2& a, const Pose2& b) {
 }  // namespace
 
 struct KeyframeSlam::Impl {
-  explicit Impl(const SlamOptions& o) : options(o), submaps(o), local_submaps(o) {}
+  explicit Impl(const SlamOptions& o) : options(o), submaps(o) {}
 
   SlamOptions options;
   PoseGraph graph;
   std::vector<internal::Keyframe> keyframes;
   std::vector<ScanRecord> scans;
   internal::SubmapMatcher submaps;
-  internal::SubmapMatcher local_submaps;
   SlamCounts counts;
   std::vector<LoopClosureRecord> closures;
   double path_m = 0.0;
@@ -67,16 +66,10 @@ struct KeyframeSlam::Impl {
                     false};
       graph.AddEdge(edge);
     }
-    if (options.heading_prior_sigma_rad > 0.0) {
-      const double sigma = options.heading_prior_sigma_rad;
-      graph.AddHeadingPrior({static_cast<int>(graph.nodes().size()) - 1,
-                             world_from_odometry.theta_rad, 1.0 / (sigma * sigma)});
-    }
     keyframes.push_back(std::move(keyframe));
     ++counts.keyframes;
     const int index = static_cast<int>(keyframes.size()) - 1;
-    if (index % options.loop_check_every == 0 && TryLoopClosure(index)) return;
-    if (options.local_matching) TryLocalMatch(index);
+    if (index % options.loop_check_every == 0) TryLoopClosure(index);
   }
 
   // The nearest keyframe at least loop_min_path_m back along the path, within `radius_m`.
@@ -139,18 +132,6 @@ struct KeyframeSlam::Impl {
     ++counts.loop_closures;
     last_closure_path_m = path_m;
     return true;
-  }
-
-  // Scan-to-map refinement against the recent submap ending local_min_path_m back.
-  void TryLocalMatch(int index) {
-    const int centre = LastAllowed(index, options.local_min_path_m);
-    if (centre < 0) return;
-    ++counts.local_checks;
-    const auto match = local_submaps.Match(
-        keyframes, graph.nodes(), centre, options.local_submap_keyframes, centre, graph_version,
-        keyframes[static_cast<std::size_t>(index)].points, Prior(centre, index),
-        options.local_window_m, options.local_window_rad);
-    if (match && AddMatchEdge(centre, index, *match)) ++counts.local_matches;
   }
 
   Pose2 Prior(int centre, int index) const {

@@ -31,11 +31,6 @@ void ValidateSlamOptions(const SlamOptions& o) {
   RequireOption(o.loop_check_every >= 1, "slam", "loop_check_every", ">= 1", o.loop_check_every);
   RequireOption(o.optimize_iterations >= 1, "slam", "optimize_iterations", ">= 1",
                 o.optimize_iterations);
-  RequireNonNegative(o.local_min_path_m, "local_min_path_m", "m");
-  RequireOption(o.local_submap_keyframes >= 1, "slam", "local_submap_keyframes", ">= 1",
-                o.local_submap_keyframes);
-  RequirePositive(o.local_window_m, "local_window_m", "m");
-  RequirePositive(o.local_window_rad, "local_window_rad", "rad");
   RequirePositive(o.submap_radius_m, "submap_radius_m", "m");
   RequirePositive(o.loop_window_m, "loop_window_m", "m");
   RequireNonNegative(o.loop_window_per_m, "loop_window_per_m", "m/m");
@@ -54,7 +49,6 @@ void ValidateSlamOptions(const SlamOptions& o) {
   RequirePositive(o.loop_sigma_rad, "loop_sigma_rad", "rad");
   RequireNonNegative(o.loop_weak_sigma_max_m, "loop_weak_sigma_max_m", "m");
   RequirePositive(o.max_loop_chi2, "max_loop_chi2", "(chi2)");
-  RequireNonNegative(o.heading_prior_sigma_rad, "heading_prior_sigma_rad", "rad");
 }
 
 }  // namespace pena::slam

@@ -3,8 +3,6 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <unordered_map>
 
 namespace pena::slam::internal {
 namespace {
@@ -18,38 +16,6 @@ bool WellConditioned(const Eigen::Matrix3d& information, double min_ratio) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(information.block<2, 2>(0, 0));
   const Eigen::Vector2d values = solver.eigenvalues();
   return values.y() > 0.0 && values.x() / values.y() >= min_ratio;
-}
-
-// Cell size of the confirmation test: a point counts when another keyframe saw something this
-// close (floor and ceiling hits of a tilted laser move with the person and are seen once).
-constexpr double kConfirmCellM = 0.1;
-
-std::int64_t CellKey(const Eigen::Vector2d& point, int dx, int dy) {
-  const auto x = static_cast<std::int64_t>(std::floor(point.x() / kConfirmCellM)) + dx;
-  const auto y = static_cast<std::int64_t>(std::floor(point.y() / kConfirmCellM)) + dy;
-  return (x << 32) ^ (y & 0xffffffff);
-}
-
-// The points (each tagged with its keyframe) that another keyframe confirms.
-scan_matching::Points2 Confirmed(const std::vector<std::pair<Eigen::Vector2d, int>>& tagged) {
-  // Per cell: the first keyframe that saw it, or -2 when two different ones did.
-  std::unordered_map<std::int64_t, int> seen;
-  for (const auto& [point, keyframe] : tagged) {
-    auto [it, inserted] = seen.emplace(CellKey(point, 0, 0), keyframe);
-    if (!inserted && it->second != keyframe) it->second = -2;
-  }
-  scan_matching::Points2 confirmed;
-  for (const auto& [point, keyframe] : tagged) {
-    bool ok = false;
-    for (int dx = -1; dx <= 1 && !ok; ++dx) {
-      for (int dy = -1; dy <= 1 && !ok; ++dy) {
-        const auto it = seen.find(CellKey(point, dx, dy));
-        ok = it != seen.end() && it->second != keyframe;
-      }
-    }
-    if (ok) confirmed.push_back(point);
-  }
-  return confirmed;
 }
 
 }  // namespace
@@ -69,21 +35,16 @@ void SubmapMatcher::Build(const std::vector<Keyframe>& keyframes,
                           int last) {
   const geometry::Pose2 centre_from_world =
       geometry::Inverse(poses[static_cast<std::size_t>(centre)]);
-  std::vector<std::pair<Eigen::Vector2d, int>> tagged;
+  scan_matching::Points2 points;
   for (int m = first; m <= last; ++m) {
     const geometry::Pose2 centre_from_m =
         geometry::Compose(centre_from_world, poses[static_cast<std::size_t>(m)]);
     for (const Eigen::Vector2d& point : keyframes[static_cast<std::size_t>(m)].points) {
       const Eigen::Vector2d p = geometry::TransformPoint(centre_from_m, point);
-      if (p.norm() <= options_.submap_radius_m) tagged.emplace_back(p, m);
+      if (p.norm() <= options_.submap_radius_m) points.push_back(p);
     }
   }
-  matcher_.emplace(options_.matcher,
-                   options_.confirm_reference ? Confirmed(tagged) : [&] {
-                     scan_matching::Points2 all;
-                     for (const auto& entry : tagged) all.push_back(entry.first);
-                     return all;
-                   }());
+  matcher_.emplace(options_.matcher, points);
   centre_ = centre;
   first_ = first;
   last_ = last;

@@ -24,8 +24,6 @@ struct SlamCounts {
   long loop_matched = 0;      // scored above loop_min_score and well conditioned
   long loop_closures = 0;     // kept after optimisation
   long loop_rejected = 0;     // dropped by the chi2 test after optimisation
-  long local_checks = 0;      // scan-to-submap refinements tried
-  long local_matches = 0;     // kept as edges
   long optimisations = 0;
 };
 

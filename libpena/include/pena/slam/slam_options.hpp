@@ -26,10 +26,6 @@ struct SlamOptions {
   double loop_window_rad = 0.08726646259971647;      // 5 deg half-width after a closure
   double loop_window_rad_per_m = 0.002;              // growth per metre
   double loop_window_max_rad = 0.2617993877991494;   // 15 deg
-  // Keep only submap points that a second keyframe saw within 10 cm (a tilted body-worn laser's
-  // floor hits are seen once; as the odometry's confirm_reference).
-  // Off by default: on simulated seeds 1-2 it helped loop170 seed 1 and hurt the others.
-  bool confirm_reference = false;
   double loop_min_score = 0.6;       // eq. 2 score a closure needs
   // Refuse a closure whose best grid pose lies on the search window's edge (the optimum may lie
   // outside). Off here, on for people in `pena map`: it removes wrong corridor closures but also
@@ -38,15 +34,6 @@ struct SlamOptions {
   bool reject_window_edge = false;
   double degenerate_eigen_ratio = 0.05;  // translation eigenvalue ratio below: corridor, refused
   int loop_check_every = 1;          // try a closure at every n-th keyframe
-  // Scan-to-map refinement (Cartographer's local SLAM, here as graph edges): a keyframe without a
-  // loop candidate is matched against the submap of the local_submap_keyframes keyframes that
-  // end local_min_path_m back along the path (their long-range points pin the position along
-  // corridors, where the odometry keeps the stride model's estimate).
-  bool local_matching = false;  // off: it made the simulated maps worse (docs/slam.md)
-  double local_min_path_m = 1.0;
-  int local_submap_keyframes = 40;
-  double local_window_m = 0.5;                       // half-width
-  double local_window_rad = 0.05235987755982988;     // 3 deg half-width
   scan_matching::CorrelationMatcherOptions matcher{0.06, 0.02, 8, 10, true};
   // Edge uncertainties (1 sigma). Odometry between consecutive keyframes: a floor plus a share
   // of the motion; loop closures: fixed.
@@ -63,12 +50,6 @@ struct SlamOptions {
   // along the weakest, at most this (m; with degenerate_eigen_ratio 0.05 the ratio gives at most
   // 0.22 m). 0: loop_sigma_m both ways (docs/slam.md).
   double loop_weak_sigma_max_m = 0.5;
-  // Absolute heading (0: off). A person's odometry heading is held to magnetic north by the
-  // dead reckoning's compass, so it does not drift as a robot's does. With this > 0 every
-  // keyframe keeps its odometry heading with this sigma, and a loop closure moves positions
-  // instead of rotating whole stretches of the walk. Off: it helps loops a closure had rotated
-  // and hurts runs whose odometry heading is itself 1-2 deg off (docs/slam.md).
-  double heading_prior_sigma_rad = 0.0;
   int optimize_iterations = 10;
   double max_loop_chi2 = 25.0;  // a closure disagreeing more than this after optimising is dropped
 };
