@@ -291,8 +291,9 @@ def main():
     parser.add_argument('--work')
     parser.add_argument('--score-only', action='store_true',
                         help='score the run already in --work')
-    parser.add_argument('fusion_extra', nargs='*', help='after --: extra pena-fusion options')
-    args = parser.parse_args()
+    argv = sys.argv[1:]
+    fusion_extra = argv[argv.index('--') + 1:] if '--' in argv else []  # extra pena-fusion options
+    args = parser.parse_args(argv[:argv.index('--')] if '--' in argv else argv)
     log = Path(args.log)
     if not 2 <= args.parts <= len(IDS):
         sys.exit(f"fusion-split-log: --parts must be in 2..{len(IDS)}, got {args.parts}")
@@ -311,7 +312,7 @@ def main():
                 sys.exit(f"fusion-split-log: {build / binary} not built")
         for sub in ['state', 'fusion'] + [p[0] for p in pieces]:
             subprocess.run(['rm', '-rf', str(work / sub)], check=True)
-        if not run_team(build, pieces, work, args.interval, args.fusion_extra):
+        if not run_team(build, pieces, work, args.interval, fusion_extra):
             return 1
 
     trajectories = {p[0]: read_tum(work / p[0] / 'trajectory.tum', p[3]) for p in pieces}
