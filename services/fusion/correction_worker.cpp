@@ -13,6 +13,14 @@
 namespace pena::services {
 namespace {
 
+// The covariance of world_from_body the entity reported with its scan, if it is usable.
+std::optional<Eigen::Matrix3d> ReportedCovariance(const pena_dds::ReferenceScan& scan) {
+  Eigen::Matrix3d covariance;
+  for (int i = 0; i < 9; ++i) covariance(i / 3, i % 3) = scan.covariance()[static_cast<std::size_t>(i)];
+  if (!covariance.allFinite() || covariance.diagonal().minCoeff() < 0.0) return std::nullopt;
+  return covariance;
+}
+
 bool IsIdentity(const geometry::Pose2& pose) {
   return pose.x_m == 0.0 && pose.y_m == 0.0 && pose.theta_rad == 0.0;
 }
@@ -122,9 +130,9 @@ void CorrectionWorker::Offer(const pena_dds::ReferenceScan& scan, std::int64_t r
     // The entity's own odometry grows its uncertainty at every reference, attempted or not
     // (after the match in flight, which was predicted up to its own scan).
     if (entity.in_flight) {
-      entity.deferred_odometry.push_back(odom_from_body);
+      entity.deferred_odometry.emplace_back(odom_from_body, ReportedCovariance(scan));
     } else {
-      FilterOf(entity).Predict(odom_from_body);
+      FilterOf(entity).Predict(odom_from_body, ReportedCovariance(scan));
     }
     if (options_.lockstep) {
       // On the scans' own stamps, as the entity counts them: it waits for exactly these.
@@ -277,7 +285,9 @@ void CorrectionWorker::Finish(const Job& job, const fusion::FusionCorrection& ma
     entity.in_flight = false;
     blended = Blend(job, match, predicted, entity);
     // The odometry that came during the match is predicted after it.
-    for (const geometry::Pose2& odom : entity.deferred_odometry) FilterOf(entity).Predict(odom);
+    for (const auto& [odom, reported] : entity.deferred_odometry) {
+      FilterOf(entity).Predict(odom, reported);
+    }
     entity.deferred_odometry.clear();
     // Recorded under the same lock as in_flight: a later match for this entity must not be
     // overwritten by this older one.

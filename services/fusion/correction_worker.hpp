@@ -100,7 +100,8 @@ class CorrectionWorker {
     double last_attempt_stamp_s = -1e300;  // lockstep: the scan stamp of the last attempt
     std::optional<Request> pending;
     bool in_flight = false;
-    std::vector<geometry::Pose2> deferred_odometry;  // predictions that came during a match
+    // Predictions that came during a match: odometry pose and the entity's reported covariance.
+    std::vector<std::pair<geometry::Pose2, std::optional<Eigen::Matrix3d>>> deferred_odometry;
     std::optional<geometry::Pose2> map_from_odom_sent;    // what our last correction set
     std::optional<geometry::Pose2> map_from_entity_sent;  // what our last realignment asked
   };

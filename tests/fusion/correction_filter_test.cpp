@@ -125,5 +125,66 @@ TEST(CorrectionFilter, WindowFollowsTheUncertainty) {
   EXPECT_THROW(CorrectionFilter(CorrectionFilterOptions{.map_sd_m = 0.0}), std::invalid_argument);
 }
 
+TEST(CorrectionFilter, TakesTheEntitysOwnCovarianceGrowthWhereItExceedsTheModel) {
+  // The model says 0.005 m/sqrt(m) and 0.0005 rad/sqrt(m) (a simulated robot); the entity's
+  // odometry reports its heading variance grew by 0.01 rad^2 over the same 4 m.
+  CorrectionFilterOptions options;
+  options.translation_noise_m_per_sqrt_m = 0.005;
+  options.heading_noise_rad_per_sqrt_m = 0.0005;
+  options.turn_noise_rad_per_sqrt_rad = 0.0;
+  CorrectionFilter model(options), reported(options);
+  const Eigen::Matrix3d before = Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal();
+  const Eigen::Matrix3d after = Eigen::Vector3d(1e-4, 1e-4, 1e-4 + 0.01).asDiagonal();
+  model.Predict({0, 0, 0});
+  model.Predict({4, 0, 0});
+  reported.Predict({0, 0, 0}, before);
+  reported.Predict({4, 0, 0}, after);
+  EXPECT_NEAR(reported.covariance()(2, 2) - model.covariance()(2, 2),
+              0.01 - 4 * 0.0005 * 0.0005, 1e-9);
+  // Its position grew less than the model says: the model's growth stays.
+  EXPECT_NEAR(reported.covariance()(0, 0), model.covariance()(0, 0), 1e-12);
+  // A covariance that shrank (the entity applied a correction) adds nothing beyond the model.
+  CorrectionFilter corrected(options);
+  corrected.Predict({0, 0, 0}, after);
+  corrected.Predict({4, 0, 0}, before);
+  EXPECT_NEAR(corrected.covariance()(2, 2), model.covariance()(2, 2), 1e-12);
+}
+
+TEST(CorrectionFilter, ScalesItsNoiseUpWhenMatchesKeepDisagreeingAndNotForOne) {
+  // Near the corner of the building every match is good. The prediction is 0.3 m off each time
+  // while the filter believes 0.06 m: after adapt_window matches it has learnt its noise is
+  // larger; one such match among consistent ones teaches nothing.
+  const geometry::Pose2 truth{17.0, 1.0, 0.8};
+  const geometry::Pose2 off{17.3, 1.0, 0.8};
+  CorrectionFilterOptions options;
+  options.translation_noise_m_per_sqrt_m = 0.02;
+  options.adapt_window = 4;
+  const FusionCorrection match =
+      ComputeCorrection("ff1", ScanOf(Building(), truth), off, {}, Building());
+  ASSERT_TRUE(match.accepted) << match.reason;
+  const FusionCorrection agreeing =
+      ComputeCorrection("ff1", ScanOf(Building(), truth), truth, {}, Building());
+  ASSERT_TRUE(agreeing.accepted) << agreeing.reason;
+  CorrectionFilter drifting(options), steady(options);
+  for (int i = 0; i < 4; ++i) {
+    drifting.Predict({0, 0, 0});
+    drifting.Predict({9, 0, 0});
+    drifting.Update(off, match);
+    steady.Predict({0, 0, 0});
+    steady.Predict({9, 0, 0});
+    steady.Update(i == 0 ? off : truth, i == 0 ? match : agreeing);
+  }
+  EXPECT_GT(drifting.noise_scale(), 1.5);
+  EXPECT_DOUBLE_EQ(steady.noise_scale(), 1.0);
+  options.adapt_window = 0;
+  CorrectionFilter fixed(options);
+  for (int i = 0; i < 4; ++i) {
+    fixed.Predict({0, 0, 0});
+    fixed.Predict({9, 0, 0});
+    fixed.Update(off, match);
+  }
+  EXPECT_DOUBLE_EQ(fixed.noise_scale(), 1.0);
+}
+
 }  // namespace
 }  // namespace pena::fusion

@@ -4,9 +4,12 @@
 // (docs/fusion.md, "Measuring the global map offline"). The state directory is copied first and
 // never written. Not a test: a tool to compare GlobalMapOptions on the same inputs.
 //
-//   fusion_rebuild_eval STATE_DIR MISSION_DIR [--min-lone-support CELLS_PER_M]
-//       [--lone-duplicate-m M] [--min-lone-agreement F] [--agreement-evidence-m M]
-//       [--list-imprecise]
+// MISSION_DIR may also be a line CSV of reference walls (e.g. a single-run SLAM's line map of a
+// real log, scripts/fusion-split-log.py).
+//
+//   fusion_rebuild_eval STATE_DIR MISSION_DIR|WALLS.csv [--min-lone-support CELLS_PER_M]
+//       [--lone-duplicate-m M] [--max-lone-error-m M] [--error-radius-m M]
+//       [--prior-evidence-m M] [--list-imprecise]
 #include <unistd.h>
 
 #include <algorithm>
@@ -37,8 +40,8 @@ Args Parse(int argc, char** argv) {
   if (argc < 3) {
     throw std::invalid_argument(
         "usage: fusion_rebuild_eval STATE_DIR MISSION_DIR [--min-lone-support CELLS_PER_M] "
-        "[--lone-duplicate-m M] [--min-lone-agreement F] [--agreement-evidence-m M] "
-        "[--list-imprecise]");
+        "[--lone-duplicate-m M] [--max-lone-error-m M] [--error-radius-m M] "
+        "[--prior-evidence-m M] [--list-imprecise]");
   }
   Args args;
   args.state = argv[1];
@@ -51,8 +54,9 @@ Args Parse(int argc, char** argv) {
     };
     if (flag == "--min-lone-support") args.global.min_lone_support_per_m = value();
     else if (flag == "--lone-duplicate-m") args.global.lone_duplicate_distance_m = value();
-    else if (flag == "--min-lone-agreement") args.global.min_lone_agreement = value();
-    else if (flag == "--agreement-evidence-m") args.global.min_agreement_evidence_m = value();
+    else if (flag == "--max-lone-error-m") args.global.max_lone_error_m = value();
+    else if (flag == "--error-radius-m") args.global.error_radius_m = value();
+    else if (flag == "--prior-evidence-m") args.global.prior_evidence_m = value();
     else if (flag == "--list-imprecise") args.list_imprecise = true;
     else throw std::invalid_argument("unknown option " + flag);
   }
@@ -114,7 +118,8 @@ int main(int argc, char** argv) try {
   }
   fusion::GlobalMap global(args.global);
   global.Rebuild(sources);
-  const std::vector<geometry::Segment2> walls = ReadSegments(args.mission / "observed.csv");
+  const std::vector<geometry::Segment2> walls = ReadSegments(
+      fs::is_directory(args.mission) ? args.mission / "observed.csv" : args.mission);
 
   std::vector<geometry::Segment2> observed;
   std::map<std::string, std::vector<geometry::Segment2>> classes;
@@ -143,8 +148,9 @@ int main(int argc, char** argv) try {
     Print("local " + entity.status.entity_id, eval::EvaluateLineMap(local, walls));
   }
   for (const auto& [entity, a] : global.agreement()) {
-    std::printf("agreement %-8s %6.1f m merged into corroborated walls, %6.1f m drifted copies: %.3f\n",
-                entity.c_str(), a.agree_m, a.disagree_m, a.ratio());
+    std::printf("agreement %-8s %6.1f m merged into corroborated walls, %6.1f m drifted copies: "
+                "%.3f, RMS offset %.3f m\n",
+                entity.c_str(), a.agree_m, a.disagree_m, a.ratio(), a.rms_offset_m());
   }
   for (const auto& [name, segments] : classes) Print("  " + name, eval::EvaluateLineMap(segments, walls));
   Print("global map (observed)", eval::EvaluateLineMap(observed, walls));

@@ -124,10 +124,10 @@ TEST(GlobalMap, WithholdsALoneDottedWallUntilAnotherEntityCorroboratesIt) {
 }
 
 TEST(GlobalMap, LeavesOutALoneDriftedCopyOfACorroboratedWall) {
-  // The copy alone is judged here: ff1's agreement (8 m of 14 m) would also withhold its lone
-  // wall (WithholdsTheLoneWallsOfAnEntityThatDisagreesWithTheOthers).
+  // The copy alone is judged here: ff1's estimated wall error (its copy is 0.4 m off) would also
+  // withhold its lone wall (WithholdsTheLoneWallsOfAnEntityThatDisagreesWithTheOthers).
   FusionOptions lenient;
-  lenient.global.min_lone_agreement = 0.0;
+  lenient.global.max_lone_error_m = 10.0;
   TwoEntities team(lenient);
   // Both see y = 2 (x 0..14 in the map); ff1 also saw it 0.4 m off from a drifted pose, and a
   // real wall 2 m away that nobody else saw.
@@ -156,8 +156,8 @@ TEST(GlobalMap, LeavesOutALoneDriftedCopyOfACorroboratedWall) {
 
 TEST(GlobalMap, WithholdsTheLoneWallsOfAnEntityThatDisagreesWithTheOthers) {
   // ff1 drifted: of its walls along y = 2, which ff2 also saw, 8 m merged and 6 m are a copy
-  // 0.4 m off. Its wall at y = 4 nobody else saw is as suspect. ff2's walls agree (12 m of 12 m):
-  // its lone wall at y = -3 is published.
+  // 0.4 m off: its wall error there is estimated at 0.22 m. Its wall at y = 4 nobody else saw, 2 m
+  // away, is as suspect. ff2's walls agree (12 m of 12 m): its lone wall at y = -3 is published.
   const auto run = [](const FusionOptions& options) {
     TwoEntities team(options);
     team.fusion.Handle(LocalDelta{
@@ -186,22 +186,49 @@ TEST(GlobalMap, WithholdsTheLoneWallsOfAnEntityThatDisagreesWithTheOthers) {
   ASSERT_EQ(global.agreement().size(), 2u);
   EXPECT_NEAR(global.agreement().at("ff1").agree_m, 8.0, 1e-6);
   EXPECT_NEAR(global.agreement().at("ff1").disagree_m, 6.0, 1e-6);
+  EXPECT_NEAR(global.agreement().at("ff1").rms_offset_m(), 0.4 * std::sqrt(6.0 / 14.0), 1e-3);
   EXPECT_NEAR(global.agreement().at("ff2").ratio(), 1.0, 1e-9);
-  // With the rule off ff1's lone wall is published; with too little compared it is too.
+  // With a looser promise ff1's lone wall is published; with a strong prior it is too.
   FusionOptions off;
-  off.global.min_lone_agreement = 0.0;
+  off.global.max_lone_error_m = 0.3;
   EXPECT_EQ(at_y(run(off), 4.0), 1);
   FusionOptions little;
-  little.global.min_agreement_evidence_m = 20.0;
+  little.global.prior_evidence_m = 200.0;
   EXPECT_EQ(at_y(run(little), 4.0), 1);
   FusionOptions bad;
-  bad.global.min_lone_agreement = 1.5;
+  bad.global.error_radius_m = 0.0;
   EXPECT_THROW(FusionState{bad}, std::invalid_argument);
+}
+
+TEST(GlobalMap, PublishesTheLoneWallsOfADriftedEntityFarFromWhereItDisagrees) {
+  // ff1's walls disagree with ff2's around x = 0..8 (a copy 0.4 m off) but that says nothing of
+  // the wall it alone saw 60 m away, where it was before it drifted: published. Near the
+  // disagreement its lone wall is withheld.
+  FusionState fusion;
+  fusion.Handle(EntityJoin{0.0, "ff1", geometry::Pose2{}});
+  fusion.Handle(EntityJoin{0.0, "ff2", geometry::Pose2{}});
+  line_map::LineMap ff1_map, ff2_map;
+  fusion.Handle(LocalDelta{1.0, "ff1",
+                           ff1_map.Integrate({Wall(0, 2, 8, 2), Wall(1, 2.4, 7, 2.4),
+                                              Wall(0, 4, 8, 4), Wall(60, 4, 68, 4)},
+                                             "ff1")});
+  fusion.Handle(LocalDelta{2.0, "ff2", ff2_map.Integrate({Wall(0, 2, 12, 2)}, "ff2")});
+  const line_map::MapSnapshot map = fusion.GlobalSnapshot();
+  const auto has = [&](double x, double y) {
+    return std::any_of(map.segments.begin(), map.segments.end(), [&](const auto& s) {
+      return std::abs(s.segment.start_m.y() - y) < 0.05 && s.segment.start_m.x() < x + 1.0 &&
+             s.segment.end_m.x() > x - 1.0;
+    });
+  };
+  EXPECT_TRUE(has(4.0, 2.0));
+  EXPECT_FALSE(has(4.0, 4.0)) << "near where ff1 disagrees";
+  EXPECT_TRUE(has(64.0, 4.0)) << "far from it";
 }
 
 TEST(GlobalMap, WithholdsAWallTwoUntrustedEntitiesSawAlongAPlanWallTheyDoNotConfirm) {
   // Plan walls y = 0 and y = 5. ff1 and ff2 each confirm y = 0 but also left a copy of it
-  // 0.4 m off (agreement 20 m of 28 m: untrusted). Both saw y = 5 at 5.2, drifted alike.
+  // 0.4 m off (agreement 20 m of 28 m; estimated wall error 0.2 m: untrusted). Both saw y = 5 at
+  // 5.2, drifted alike.
   const auto run = [](const FusionOptions& options) {
     FusionState fusion(options);
     std::vector<line_map::LineSegment> plan = {Wall(0, 0, 10, 0, 0), Wall(0, 5, 10, 5, 0)};
@@ -222,7 +249,7 @@ TEST(GlobalMap, WithholdsAWallTwoUntrustedEntitiesSawAlongAPlanWallTheyDoNotConf
   };
   EXPECT_EQ(run(FusionOptions{}), 0);
   FusionOptions off;
-  off.global.min_lone_agreement = 0.0;
+  off.global.max_lone_error_m = 10.0;
   EXPECT_EQ(run(off), 1);
 }
 

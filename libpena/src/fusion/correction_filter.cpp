@@ -12,6 +12,9 @@ namespace {
 
 // A variance standing for "no information" along a degenerate axis, m^2.
 constexpr double kUnconstrainedVariance_m2 = 1e6;
+// The median of chi^2 with 3 degrees of freedom: what the median squared Mahalanobis distance of
+// innovations is when the filter's covariances are right.
+constexpr double kChi2Median3 = 2.366;
 
 // Rotates the (x, y) part of a covariance by `theta_rad` (body frame -> map frame).
 Eigen::Matrix3d Rotate(const Eigen::Matrix3d& covariance, double theta_rad) {
@@ -58,6 +61,10 @@ void ValidateCorrectionFilterOptions(const CorrectionFilterOptions& o) {
           o.min_window_m);
   Require(o.min_window_rad > 0.0, "correction_filter.min_window_rad must be > 0 (radians)",
           o.min_window_rad);
+  Require(o.adapt_window >= 0, "correction_filter.adapt_window must be >= 0 (matches)",
+          o.adapt_window);
+  Require(o.max_noise_scale >= 1.0, "correction_filter.max_noise_scale must be >= 1",
+          o.max_noise_scale);
 }
 
 CorrectionFilter::CorrectionFilter(const CorrectionFilterOptions& options) : options_(options) {
@@ -68,7 +75,8 @@ CorrectionFilter::CorrectionFilter(const CorrectionFilterOptions& options) : opt
                     .asDiagonal();
 }
 
-void CorrectionFilter::Predict(const geometry::Pose2& odom_from_body) {
+void CorrectionFilter::Predict(const geometry::Pose2& odom_from_body,
+                               const std::optional<Eigen::Matrix3d>& reported_covariance) {
   if (last_odom_) {
     // Random-walk drift of the laser odometry: variance proportional to the distance travelled
     // (and, for the heading, to the angle turned).
@@ -76,17 +84,30 @@ void CorrectionFilter::Predict(const geometry::Pose2& odom_from_body) {
         std::hypot(odom_from_body.x_m - last_odom_->x_m, odom_from_body.y_m - last_odom_->y_m);
     const double turn_rad =
         std::abs(geometry::NormalizeAngle(odom_from_body.theta_rad - last_odom_->theta_rad));
-    const double q_xy = options_.translation_noise_m_per_sqrt_m;
-    const double q_th = options_.heading_noise_rad_per_sqrt_m;
-    const double q_turn = options_.turn_noise_rad_per_sqrt_rad;
-    covariance_(0, 0) += q_xy * q_xy * distance_m;
-    covariance_(1, 1) += q_xy * q_xy * distance_m;
-    covariance_(2, 2) += q_th * q_th * distance_m + q_turn * q_turn * turn_rad;
+    const double scale = std::sqrt(noise_scale_);
+    const double q_xy = scale * options_.translation_noise_m_per_sqrt_m;
+    const double q_th = scale * options_.heading_noise_rad_per_sqrt_m;
+    const double q_turn = scale * options_.turn_noise_rad_per_sqrt_rad;
+    double grow_xy_m2 = q_xy * q_xy * distance_m;
+    double grow_th_rad2 = q_th * q_th * distance_m + q_turn * q_turn * turn_rad;
+    // The entity's odometry knows its own sensors: where its covariance grew more than the
+    // model says (a real robot's heading drifts far more than the simulated one the defaults
+    // were set on), that growth is taken. A correction the entity applied shrinks its
+    // covariance: no growth then. Position: the mean of x and y (frames may differ).
+    if (reported_covariance && last_reported_ && reported_covariance->allFinite()) {
+      const Eigen::Vector3d growth = reported_covariance->diagonal() - last_reported_->diagonal();
+      grow_xy_m2 = std::max(grow_xy_m2, 0.5 * (growth.x() + growth.y()));
+      grow_th_rad2 = std::max(grow_th_rad2, growth.z());
+    }
+    covariance_(0, 0) += grow_xy_m2;
+    covariance_(1, 1) += grow_xy_m2;
+    covariance_(2, 2) += grow_th_rad2;
     covariance_(0, 0) = std::min(covariance_(0, 0), options_.max_sd_m * options_.max_sd_m);
     covariance_(1, 1) = std::min(covariance_(1, 1), options_.max_sd_m * options_.max_sd_m);
     covariance_(2, 2) = std::min(covariance_(2, 2), options_.max_sd_rad * options_.max_sd_rad);
   }
   last_odom_ = odom_from_body;
+  if (reported_covariance && reported_covariance->allFinite()) last_reported_ = reported_covariance;
 }
 
 void CorrectionFilter::Grow(double factor) {
@@ -100,6 +121,22 @@ void CorrectionFilter::Grow(double factor) {
                                   std::min(covariance_(2, 2), max_var_rad2))
                       .asDiagonal();
   }
+}
+
+void CorrectionFilter::Adapt(double mahalanobis_sq) {
+  if (options_.adapt_window <= 0 || !std::isfinite(mahalanobis_sq)) return;
+  recent_mahalanobis_sq_.push_back(mahalanobis_sq);
+  if (recent_mahalanobis_sq_.size() < static_cast<std::size_t>(options_.adapt_window)) return;
+  std::vector<double>& values = recent_mahalanobis_sq_;
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2),
+                   values.end());
+  const double ratio = values[values.size() / 2] / kChi2Median3;
+  values.clear();  // the next estimate is made with the rescaled covariances
+  const double scale = std::clamp(noise_scale_ * ratio, 1.0, options_.max_noise_scale);
+  // The prediction was as far off as the noise: it grows by the same ratio (never shrinks here:
+  // the Kalman updates do that).
+  if (scale > noise_scale_) Grow(scale / noise_scale_);
+  noise_scale_ = scale;
 }
 
 scan_matching::SearchWindow CorrectionFilter::Window(
@@ -120,15 +157,13 @@ FilteredCorrection CorrectionFilter::Update(const geometry::Pose2& predicted,
   FilteredCorrection out;
   out.map_from_body = predicted;
   out.covariance = covariance_;
-  const double predicted_sd_m = std::sqrt(0.5 * (covariance_(0, 0) + covariance_(1, 1)));
-  if (predicted_sd_m < options_.min_update_sd_m) {
-    out.reason = "prediction (sd " + std::to_string(predicted_sd_m) + " m) already within the "
-                 "map's precision";
-    return out;
-  }
+  const auto precise = [&] {
+    return std::sqrt(0.5 * (covariance_(0, 0) + covariance_(1, 1))) < options_.min_update_sd_m;
+  };
   if (!match.accepted) {
     out.reason = match.reason;
-    Grow(options_.refused_growth);
+    if (!precise()) Grow(options_.refused_growth);
+    out.covariance = covariance_;
     return out;
   }
   // Measurement covariance in the predicted body frame: residual_sd^2 (J^T J)^-1, with the
@@ -149,10 +184,18 @@ FilteredCorrection CorrectionFilter::Update(const geometry::Pose2& predicted,
                                  options_.map_sd_rad * options_.map_sd_rad)
                      .asDiagonal();
   measurement = Rotate(measurement, predicted.theta_rad);
-  // Innovation in the map frame, gated, then the Kalman blend.
+  // Innovation in the map frame; every match the matcher accepted tells how well the
+  // covariances fit (Adapt), even one that is then not used.
   const geometry::Pose2& z = match.matched_map_from_body;
   const Eigen::Vector3d innovation(z.x_m - predicted.x_m, z.y_m - predicted.y_m,
                                    geometry::NormalizeAngle(z.theta_rad - predicted.theta_rad));
+  Adapt(innovation.dot((covariance_ + measurement).inverse() * innovation));
+  if (precise()) {
+    out.reason = "prediction already within the map's precision";
+    out.covariance = covariance_;
+    return out;
+  }
+  // Gated, then the Kalman blend.
   const Eigen::Matrix3d innovation_covariance = covariance_ + measurement;
   const Eigen::Matrix3d inverse = innovation_covariance.inverse();
   out.mahalanobis_sq = innovation.dot(inverse * innovation);

@@ -70,15 +70,16 @@ std::vector<std::int64_t> MatchIds(const std::vector<LineSegment>& fresh,
   return ids;
 }
 
-// Each source segment's length by provenance key.
-std::unordered_map<std::string, double> LengthByKey(const std::vector<MergeSource>& sources) {
-  std::unordered_map<std::string, double> lengths;
+// Each source segment (map frame) by provenance key.
+std::unordered_map<std::string, geometry::Segment2> SegmentByKey(
+    const std::vector<MergeSource>& sources) {
+  std::unordered_map<std::string, geometry::Segment2> segments;
   for (const MergeSource& source : sources) {
     for (const LineSegment& segment : source.segments) {
-      lengths[ProvenanceKey(source.name, segment.id)] = geometry::Length(segment.segment);
+      segments[ProvenanceKey(source.name, segment.id)] = segment.segment;
     }
   }
-  return lengths;
+  return segments;
 }
 
 // The plan under the observations (plan_overlay.hpp), in source order: adds the plan keys to the
@@ -110,15 +111,15 @@ GlobalMap::GlobalMap(GlobalMapOptions options) : options_(options), published_(o
     throw std::invalid_argument("global_map.min_lone_support_per_m must be >= 0 (cells per metre), got " +
                                 std::to_string(options_.min_lone_support_per_m));
   }
-  if (!(options_.min_lone_agreement >= 0.0 && options_.min_lone_agreement <= 1.0)) {
-    throw std::invalid_argument("global_map.min_lone_agreement must be in [0, 1], got " +
-                                std::to_string(options_.min_lone_agreement));
+  if (!std::isfinite(options_.error_radius_m) || options_.error_radius_m <= 0.0) {
+    throw std::invalid_argument("global_map.error_radius_m must be > 0 (metres), got " +
+                                std::to_string(options_.error_radius_m));
   }
   for (const auto& [name, value] : {std::pair{"plan_shadow_m", options_.plan_shadow_m},
                                     std::pair{"lone_duplicate_distance_m",
                                               options_.lone_duplicate_distance_m},
-                                    std::pair{"min_agreement_evidence_m",
-                                              options_.min_agreement_evidence_m},
+                                    std::pair{"max_lone_error_m", options_.max_lone_error_m},
+                                    std::pair{"prior_evidence_m", options_.prior_evidence_m},
                                     std::pair{"min_plan_piece_m", options_.min_plan_piece_m}}) {
     if (!std::isfinite(value) || value < 0.0) {
       throw std::invalid_argument(std::string("global_map.") + name + " must be >= 0 (metres), got " +
@@ -151,7 +152,7 @@ line_map::MapDelta GlobalMap::Rebuild(const std::vector<MergeSource>& sources) {
     if (!source.plan) continue;
     for (const LineSegment& wall : source.segments) plan.push_back(wall.segment);
   }
-  agreement_ = detail::DropLoneWalls(fresh, LengthByKey(sources), plan, options_);
+  agreement_ = detail::DropLoneWalls(fresh, SegmentByKey(sources), plan, options_);
   const std::vector<LineSegment> plan_pieces = PlanPieces(sources, fresh, options_);
   fresh.insert(fresh.end(), plan_pieces.begin(), plan_pieces.end());
   const std::vector<LineSegment> old = published_.segments();

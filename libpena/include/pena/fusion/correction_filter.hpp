@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <vector>
 #include <string>
 
 #include "pena/fusion/correction.hpp"
@@ -47,6 +48,13 @@ struct CorrectionFilterOptions {
   // ... but at least this (full extents), metres / radians, and at most the options' window.
   double min_window_m = 0.3;
   double min_window_rad = 0.07;
+  // The noise above is a lower bound, scaled up online by covariance matching (Mehra 1972): once
+  // this many matches have been compared, a median squared Mahalanobis distance of their
+  // innovations above chi^2(3)'s median says the odometry drifts more than assumed, and the
+  // process noise and the prediction are scaled by the ratio (down again, to 1, when it is
+  // below). 0 = off. A median of several matches: one aliased match or one wrong wall does not.
+  int adapt_window = 8;
+  double max_noise_scale = 400.0;  // the variance scale's cap (20x the standard deviations), >= 1
 };
 
 // Throws std::invalid_argument naming the field and unit.
@@ -68,8 +76,11 @@ class CorrectionFilter {
  public:
   explicit CorrectionFilter(const CorrectionFilterOptions& options);
 
-  // Grows the uncertainty by the odometry's motion since the previous call (odom frame).
-  void Predict(const geometry::Pose2& odom_from_body);
+  // Grows the uncertainty by the odometry's motion since the previous call (odom frame): by the
+  // options' noise model, or by the growth of `reported_covariance` (the entity's own estimate
+  // of its pose's covariance, x_m, y_m, theta_rad) since the previous call where that is larger.
+  void Predict(const geometry::Pose2& odom_from_body,
+               const std::optional<Eigen::Matrix3d>& reported_covariance = std::nullopt);
   // The match window for the next correction: +- window_sigmas of the prediction, clamped
   // between the minimum and `max_window` (steps kept from max_window).
   scan_matching::SearchWindow Window(const scan_matching::SearchWindow& max_window) const;
@@ -80,14 +91,22 @@ class CorrectionFilter {
 
   // Current covariance of the entity's pose in the map frame (x_m, y_m, theta_rad).
   const Eigen::Matrix3d& covariance() const { return covariance_; }
+  // The process noise's variance scale estimated so far (1: the options' figures).
+  double noise_scale() const { return noise_scale_; }
 
  private:
   // Multiplies the covariance (capped at max_sd_m / max_sd_rad).
   void Grow(double factor);
+  // Covariance matching: records a match's squared Mahalanobis distance and rescales the noise
+  // once adapt_window of them are in.
+  void Adapt(double mahalanobis_sq);
 
   CorrectionFilterOptions options_;
   Eigen::Matrix3d covariance_;
   std::optional<geometry::Pose2> last_odom_;
+  std::optional<Eigen::Matrix3d> last_reported_;
+  double noise_scale_ = 1.0;
+  std::vector<double> recent_mahalanobis_sq_;
 };
 
 }  // namespace pena::fusion

@@ -4,6 +4,7 @@
 // line_map::LineMap's same-wall rule; global ids stay stable across rebuilds because each global
 // segment is matched to its predecessor by the local segments that support it (provenance).
 
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -28,8 +29,11 @@ struct GlobalMapOptions {
   // Rules for walls one entity alone saw: docs/fusion.md, "The global map", step 3.
   double min_lone_support_per_m = 10.0;    // occupied cells per metre a lone wall needs (0 = all published)
   double lone_duplicate_distance_m = 0.8;  // a lone parallel wall this near a corroborated one is its copy, m
-  double min_lone_agreement = 0.95;        // agreement an entity needs for its lone walls, [0, 1]
-  double min_agreement_evidence_m = 5.0;   // below this compared length an entity is trusted, m
+  // A lone wall is published while its entity's wall error estimated around it (step 3's noise
+  // model) is at most this, m.
+  double max_lone_error_m = 0.15;
+  double error_radius_m = 10.0;   // how far an entity's compared walls tell about its others, m
+  double prior_evidence_m = 5.0;  // wall length the prior (walls within the merge rule) weighs, m
   double plan_shadow_m = 0.6;    // an observed parallel wall this near a plan wall replaces it there, m
   double min_plan_piece_m = 0.3;  // shorter uncovered plan pieces are dropped, m
 };
@@ -38,9 +42,14 @@ struct GlobalMapOptions {
 struct EntityAgreement {
   double agree_m = 0.0;     // its segments merged into a corroborated wall
   double disagree_m = 0.0;  // its lone drifted copies of one
+  double offset_sq_m3 = 0.0;  // sum of length x squared offset from the other sources' wall
   double compared_m() const { return agree_m + disagree_m; }
   // agree_m / compared_m(); 1 when nothing was compared.
   double ratio() const { return compared_m() > 0.0 ? agree_m / compared_m() : 1.0; }
+  // Length-weighted RMS offset of its compared walls from the others' (0 when none), m.
+  double rms_offset_m() const {
+    return compared_m() > 0.0 ? std::sqrt(offset_sq_m3 / compared_m()) : 0.0;
+  }
 };
 
 // Provenance key of a source segment: "<source>:<segment id>" (e.g. "ff1:12", "plan:3").
