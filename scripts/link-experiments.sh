@@ -1,20 +1,20 @@
 #!/usr/bin/env bash
 # The link experiments (docs/link-experiments.md), one command, as root:
 #   sudo scripts/link-experiments.sh [--quick] [--out DIR] [--build DIR] [--jobs N] [--no-docs]
-#        [--modes "gateway dds"] [--skip-existing]
+#        [--modes "gateway dds"] [--skip-existing] [--secure]
 # Full: the `team` mission replayed in real time through a radio link shaped to 9.6, 28.8, 64
 # and 256 kbit/s with a 30 s outage, once through the pena-gateway pair and once as plain Fast
 # DDS with flow controllers, plus a gateway run at 9.6 kbit/s with emulated delay and loss;
 # then line maps against grids, and the report (docs/link-experiments.md between its GENERATED
 # markers, plots docs/images/link-*.png). --quick: only 9.6 kbit/s, both modes, a shortened team
 # mission (first 10 waypoints each) in real time, outage 15-45 s (~2.5 min; the CI test), report
-# under OUT only.
+# under OUT only. --secure: every run's participants with DDS Security (docs/security.md).
 # Each run lives in its own network namespaces (deploy/link/team-link-run.sh); nothing leaves
 # the machine; everything is removed on any exit.
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 quick=0; out=""; build="${PENA_BUILD:-$repo/build}"; jobs=2; docs=1; modes="gateway dds"
-skip_existing=0
+skip_existing=0; secure_opt=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --quick) quick=1; shift;;
@@ -24,7 +24,8 @@ while [[ $# -gt 0 ]]; do
     --modes) modes="$2"; shift 2;;
     --no-docs) docs=0; shift;;
     --skip-existing) skip_existing=1; shift;;
-    -h|--help) sed -n 2,13p "$0"; exit 0;;
+    --secure) secure_opt=--secure; shift;;
+    -h|--help) sed -n 2,14p "$0"; exit 0;;
     *) echo "link-experiments.sh: unknown option '$1'" >&2; exit 2;;
   esac
 done
@@ -98,7 +99,7 @@ for spec in "${specs[@]}"; do
   echo "== $name ($(date -u +%H:%M:%S))"
   # shellcheck disable=SC2086
   nice "$run" --build "$build" --mission "$out/mission" --out "$out/runs/$name" \
-    --rate-kbit "$rate" $extra $(variant_opts "$mode") > "$out/$name.log" 2>&1 &
+    --rate-kbit "$rate" $secure_opt $extra $(variant_opts "$mode") > "$out/$name.log" 2>&1 &
   pids+=($!)
   sleep 5
 done

@@ -7,12 +7,15 @@
 #   dds      plain Fast DDS across the link (profiles pena-link-{building,post}.xml), its
 #            map and pose writers rate-limited by flow controllers (flow-qos.py)
 # A second pena-monitor inside the building gives the reference (poses as written, fusion's map
-# versions as published). Writes OUT/result.json (analyse-run.py). Needs root, ip, tc, python3.
+# versions as published). --secure runs every participant with DDS Security: identities made for
+# the run (deploy/security/make-identities.sh into OUT/security), the gateways with the gateway
+# identity's profile (docs/security.md). Writes OUT/result.json (analyse-run.py). Needs root,
+# ip, tc, python3.
 # Every process and namespace it creates is removed on any exit. Nothing leaves the machine.
 set -euo pipefail
 
 mode=gateway; rate_kbit=9.6; entity_rate=1; outage=""; delay_s=0; loss=0; settle_s=90
-mission=""; out=""; build="${PENA_BUILD:-}"; gateway_extra=(); link_insecure=0
+mission=""; out=""; build="${PENA_BUILD:-}"; gateway_extra=(); link_insecure=0; secure=0
 usage() {
   cat <<USAGE
 usage: $0 --mission DIR --out DIR [--mode gateway|dds] [--rate-kbit 9.6] [--entity-rate 1]
@@ -20,6 +23,7 @@ usage: $0 --mission DIR --out DIR [--mode gateway|dds] [--rate-kbit 9.6] [--enti
           (gateway mode only: emulated in the receiving gateways, no netem on this kernel)
           [--settle-s 90] (max wait after the entities end for the post's map to converge)
           [--insecure-link] (gateway mode: open frames; default: sealed with a key made for the run)
+          [--secure] (DDS Security on every participant, identities made for the run)
           [--build DIR] [-- extra pena-gateway options]
 USAGE
 }
@@ -36,6 +40,7 @@ while [[ $# -gt 0 ]]; do
     --out) out="$2"; shift 2;;
     --build) build="$2"; shift 2;;
     --insecure-link) link_insecure=1; shift;;
+    --secure) secure=1; shift;;
     --) shift; gateway_extra=("$@"); break;;
     -h|--help) usage; exit 0;;
     *) echo "team-link-run.sh: unknown option '$1'" >&2; usage >&2; exit 2;;
@@ -55,7 +60,7 @@ for bin in "${bins[@]}"; do
 done
 mission=$(cd "$mission" && pwd)
 mkdir -p "$out"; out=$(cd "$out" && pwd)
-rm -rf "${out:?}"/{building,post,fusion,logs,entities,gateway}; mkdir -p "$out"/{logs,entities,gateway}
+rm -rf "${out:?}"/{building,post,fusion,logs,entities,gateway,security}; mkdir -p "$out"/{logs,entities,gateway}
 dds_dir=$repo/deploy/dds
 source "$here/netns-lib.sh"
 
@@ -122,6 +127,17 @@ else
   post_files=("${bld_files[@]}"); post_profile=pena_loopback; post_env=$bld_env
 fi
 
+# DDS Security: one identity per entity of the mission and per role; each process gets its own
+# (--security DIR), the gateways the gateway identity's participant profile.
+sec_monitor=(); sec_fusion=()
+if ((secure)); then
+  ids=()
+  for dir in "$mission"/*/; do [[ -f $dir/sensors.penalog ]] && ids+=("$(basename "$dir")"); done
+  "$repo/deploy/security/make-identities.sh" "$out/security" "${ids[@]}" > "$out/logs/security.log"
+  sec_monitor=(--security "$out/security/monitor"); sec_fusion=(--security "$out/security/fusion")
+  gw_security_profile=$out/security/gateway/dds-profile.xml
+fi
+
 start_ns=$(date +%s%N)
 echo "{\"mode\": \"$mode\", \"rate_kbit\": $rate_kbit, \"entity_rate\": $entity_rate, \"outage\": \"$outage\"," \
      "\"delay_s\": $delay_s, \"loss\": $loss, \"building_domain\": $bld_domain, \"post_domain\": $post_domain," \
@@ -129,10 +145,10 @@ echo "{\"mode\": \"$mode\", \"rate_kbit\": $rate_kbit, \"entity_rate\": $entity_
 
 # Command post: its monitor (and gateway) first, so nothing is missed.
 "${in_post[@]}" env FASTRTPS_DEFAULT_PROFILES_FILE="$post_env" "$monitor_bin" --out "$out/post" \
-  --domain "$post_domain" --profile "$post_profile" "${post_files[@]}" \
+  --domain "$post_domain" --profile "$post_profile" "${post_files[@]}" "${sec_monitor[@]}" \
   > "$out/logs/monitor-post.log" 2>&1 & pids+=($!)
 "${in_bld[@]}" env FASTRTPS_DEFAULT_PROFILES_FILE="$bld_env" "$monitor_bin" --out "$out/building" \
-  --domain "$bld_domain" --profile "$bld_profile" "${bld_files[@]}" \
+  --domain "$bld_domain" --profile "$bld_profile" "${bld_files[@]}" "${sec_monitor[@]}" \
   > "$out/logs/monitor-building.log" 2>&1 & pids+=($!)
 if [[ $mode == gateway ]]; then
   source "$here/gateway-args.sh"
@@ -144,16 +160,17 @@ if [[ $mode == gateway ]]; then
 fi
 "${in_bld[@]}" env FASTRTPS_DEFAULT_PROFILES_FILE="$bld_env" nice "$fusion_bin" --state-dir "$out/fusion/state" \
   --plan "$mission/apriori.csv" --out "$out/fusion" --domain "$bld_domain" --profile "$bld_profile" \
-  "${bld_files[@]}" > "$out/logs/fusion.log" 2>&1 &
+  "${bld_files[@]}" "${sec_fusion[@]}" > "$out/logs/fusion.log" 2>&1 &
 fusion_pid=$!; pids+=($fusion_pid)
 sleep 2
 entities_start_ns=$(date +%s%N)
 for dir in "$mission"/*/; do
   [[ -f $dir/sensors.penalog ]] || continue
   id=$(basename "$dir")
+  sec_entity=(); ((secure)) && sec_entity=(--security "$out/security/$id")
   "${in_bld[@]}" env FASTRTPS_DEFAULT_PROFILES_FILE="$bld_env" nice "$entity_bin" --input "$dir" \
     --rate "$entity_rate" --out "$out/entities/$id" --domain "$bld_domain" --profile "$bld_profile" \
-    "${bld_files[@]}" --wait-for-readers 20 --linger 5 > "$out/logs/entity-$id.log" 2>&1 &
+    "${bld_files[@]}" "${sec_entity[@]}" --wait-for-readers 20 --linger 5 > "$out/logs/entity-$id.log" 2>&1 &
   entity_pids+=($!); pids+=($!)
 done
 if [[ -n $outage ]]; then

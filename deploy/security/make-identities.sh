@@ -125,6 +125,7 @@ SENSOR_TOPICS=(pena/sensors/scan pena/sensors/gyro pena/sensors/compass pena/sen
 FUSION_TOPICS=(pena/fusion/correction pena/fusion/global_map_delta pena/fusion/global_map_snapshot)
 OPERATOR_TOPICS=(pena/operator/correction pena/annotation)
 SYNC_TOPICS=(pena/sync_request)
+LINK_TOPICS=(pena/gateway/link_health)
 
 # Governance: nobody unauthenticated joins; discovery and liveliness encrypted; every topic's
 # submessages signed (metadata), and the data of topics that carry positions, map geometry,
@@ -185,9 +186,9 @@ NOT_BEFORE=$(date -u +%Y-%m-%dT%H:%M:%S)
 NOT_AFTER=$(date -u -d "+$DAYS days" +%Y-%m-%dT%H:%M:%S)
 
 # One identity: key, certificate signed by the identity CA, permissions, profile.
-# $1 name, $2 OU (role), $3 publish rules XML, $4 subscribe rules XML.
+# $1 name, $2 OU (role), $3 its allow rules (allow_rule_xml).
 make_identity() {
-  local name=$1 role=$2 publish=$3 subscribe=$4
+  local name=$1 role=$2 rules=$3
   local dir=$OUT/$name
   mkdir -p "$dir"
   local subject="/O=$ORG/OU=$role/CN=$name"
@@ -212,11 +213,7 @@ make_identity() {
     <grant name="$name">
       <subject_name>$rfc2253</subject_name>
       <validity><not_before>$NOT_BEFORE</not_before><not_after>$NOT_AFTER</not_after></validity>
-      <allow_rule>
-        <domains><id_range><min>$DOMAIN_MIN</min><max>$DOMAIN_MAX</max></id_range></domains>
-$publish
-$subscribe
-      </allow_rule>
+$rules
       <default>DENY</default>
     </grant>
   </permissions>
@@ -280,9 +277,23 @@ XML
   } > "$dir/dds-profile.xml"
 }
 
-# Rules. Entities write in the partition named after their id (docs/security.md); every reader
-# subscribes to all partitions ("*"). Fusion, operators, gateway and monitor write in the
-# default partition.
+# Rules. Entities write in the partition named after their id (docs/security.md), and read the
+# sensor topics only there; every other reader subscribes to all partitions ("*"). Fusion,
+# operators, gateway and monitor write in the default partition.
+#
+# Fast DDS decides a reader's or writer's partitions by the first allow_rule that names its
+# topic, and accepts a partition if any <subscribe> (or <publish>) of that rule names it, not
+# only the one that names the topic. So topics with different partitions go in separate
+# allow_rules.
+allow_rule_xml() {  # $1 publish XML, $2 subscribe XML
+  cat <<XML
+      <allow_rule>
+        <domains><id_range><min>$DOMAIN_MIN</min><max>$DOMAIN_MAX</max></id_range></domains>
+$1
+$2
+      </allow_rule>
+XML
+}
 publish_xml() {  # $1 partition ("" = default), then topics
   local partition=$1
   shift
@@ -293,31 +304,46 @@ publish_xml() {  # $1 partition ("" = default), then topics
   fi
   echo "        </publish>"
 }
-subscribe_xml() {
+# Readers: in every partition ("*" covers the default one too in permissions), or in those given.
+subscribe_xml() {  # then topics
+  subscribe_in_xml "*" "$@"
+}
+subscribe_in_xml() {  # $1 partitions, comma-separated, then topics
+  local partitions=$1 partition
+  shift
   echo "        <subscribe>"
   topics_xml "$@"
-  echo "          <partitions><partition>*</partition></partitions>"
+  echo "          <partitions>"
+  IFS=, read -r -a partitions <<< "$partitions"
+  for partition in "${partitions[@]}"; do echo "            <partition>$partition</partition>"; done
+  echo "          </partitions>"
   echo "        </subscribe>"
 }
 
+# An entity reads its own sensors (its driver's, in its partition) and nothing of another
+# entity's; the fusion's corrections and map and the sync requests it answers come from the
+# default partition.
 for id in "${ENTITIES[@]}"; do
   make_identity "$id" entity \
-    "$(publish_xml "$id" "${ENTITY_TOPICS[@]}" "${SENSOR_TOPICS[@]}" "${SYNC_TOPICS[@]}")" \
-    "$(subscribe_xml "${FUSION_TOPICS[@]}" "${SENSOR_TOPICS[@]}" "${SYNC_TOPICS[@]}")"
+    "$(allow_rule_xml "$(publish_xml "$id" "${ENTITY_TOPICS[@]}" "${SENSOR_TOPICS[@]}" "${SYNC_TOPICS[@]}")" \
+                      "$(subscribe_in_xml "$id" "${SENSOR_TOPICS[@]}")")
+$(allow_rule_xml "" "$(subscribe_xml "${FUSION_TOPICS[@]}" "${SYNC_TOPICS[@]}")")"
 done
 # The fusion relays operator decisions as annotations (services/fusion, the operator log).
-make_identity fusion fusion \
+make_identity fusion fusion "$(allow_rule_xml \
   "$(publish_xml "" "${FUSION_TOPICS[@]}" pena/annotation "${SYNC_TOPICS[@]}")" \
-  "$(subscribe_xml "${ENTITY_TOPICS[@]}" "${FUSION_TOPICS[@]}" "${OPERATOR_TOPICS[@]}" "${SYNC_TOPICS[@]}")"
+  "$(subscribe_xml "${ENTITY_TOPICS[@]}" "${FUSION_TOPICS[@]}" "${OPERATOR_TOPICS[@]}" "${SYNC_TOPICS[@]}")")"
+# Operators (pena-console) also show the radio link's health that the gateways publish.
 for id in "${OPERATOR_IDS[@]}"; do
-  make_identity "$id" operator \
+  make_identity "$id" operator "$(allow_rule_xml \
     "$(publish_xml "" "${OPERATOR_TOPICS[@]}" "${SYNC_TOPICS[@]}")" \
-    "$(subscribe_xml "${ENTITY_TOPICS[@]}" "${FUSION_TOPICS[@]}" "${OPERATOR_TOPICS[@]}" "${SYNC_TOPICS[@]}")"
+    "$(subscribe_xml "${ENTITY_TOPICS[@]}" "${FUSION_TOPICS[@]}" "${OPERATOR_TOPICS[@]}" "${SYNC_TOPICS[@]}" \
+                     "${LINK_TOPICS[@]}")")"
 done
 # The gateway bridges two domains: on each side it republishes what the other side's members
 # published, so it writes and reads every PeNa topic, in every partition.
-make_identity gateway gateway \
-  "$(publish_xml "*" "pena/*")" "$(subscribe_xml "pena/*")"
-make_identity monitor monitor "" \
-  "$(subscribe_xml "${ENTITY_TOPICS[@]}" "${FUSION_TOPICS[@]}" "${OPERATOR_TOPICS[@]}" "${SYNC_TOPICS[@]}")"
+make_identity gateway gateway "$(allow_rule_xml "$(publish_xml "*" "pena/*")" "$(subscribe_xml "pena/*")")"
+make_identity monitor monitor "$(allow_rule_xml "" \
+  "$(subscribe_xml "${ENTITY_TOPICS[@]}" "${FUSION_TOPICS[@]}" "${OPERATOR_TOPICS[@]}" "${SYNC_TOPICS[@]}" \
+                   "${LINK_TOPICS[@]}")")"
 echo "security material in $OUT (identities: ${ENTITIES[*]} fusion ${OPERATOR_IDS[*]} gateway monitor)"

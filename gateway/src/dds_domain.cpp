@@ -182,7 +182,9 @@ double DdsDomain::last_sent_map_change_s() const { return impl_->last_sent_chang
 
 DdsDomainStats DdsDomain::stats() const {
   std::lock_guard<std::mutex> lock(impl_->mutex);
-  return impl_->stats;
+  DdsDomainStats stats = impl_->stats;
+  stats.samples_refused = impl_->participant.refused_samples();
+  return stats;
 }
 
 void DdsDomain::PublishLinkHealth(const pena_dds::LinkHealth& health) {

@@ -63,7 +63,8 @@ void PutDdsStats(std::ostringstream& json, const DdsDomainStats& stats) {
        << ", \"stale_deltas\": " << stats.stale_deltas
        << ", \"snapshots_forwarded\": " << stats.snapshots_forwarded
        << ", \"sync_requests_sent\": " << stats.sync_requests_sent
-       << ", \"sync_requests_answered\": " << stats.sync_requests_answered << "}";
+       << ", \"sync_requests_answered\": " << stats.sync_requests_answered
+       << ", \"samples_refused\": " << stats.samples_refused << "}";
 }
 
 // Whether the link is sealed, what the seal cost, and the rejected datagrams by status.

@@ -116,7 +116,8 @@ class Reader {
          LivelinessCallback on_liveliness = {})
       : participant_(participant),
         listener_(participant, std::move(on_sample), std::move(on_liveliness)) {
-    reader_ = participant.subscriber()->create_datareader_with_profile(
+    subscriber_ = participant.SubscriberFor(spec.name);
+    reader_ = subscriber_->create_datareader_with_profile(
         participant.GetTopic<PubSubType>(spec.name), spec.reader_profile, &listener_);
     if (reader_ == nullptr) {
       throw DdsError(std::string("cannot create DDS reader on ") + spec.name + " with profile " +
@@ -125,7 +126,7 @@ class Reader {
   }
   ~Reader() {
     reader_->set_listener(nullptr);
-    participant_.subscriber()->delete_datareader(reader_);
+    subscriber_->delete_datareader(reader_);
   }
   Reader(const Reader&) = delete;
   Reader& operator=(const Reader&) = delete;
@@ -185,6 +186,7 @@ class Reader {
 
   Participant& participant_;
   Listener listener_;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
 };
 

@@ -114,7 +114,14 @@ Participant::Participant(const DdsOptions& options, const std::string& name) : n
   }
   publisher_ = participant_->create_publisher(publisher_qos);
   subscriber_ = participant_->create_subscriber(subscriber_qos);
-  if (publisher_ == nullptr || subscriber_ == nullptr) {
+  bool own_subscriber_failed = false;
+  if (secured() && !partition.empty()) {
+    dds::SubscriberQos own_qos = dds::SUBSCRIBER_QOS_DEFAULT;
+    own_qos.partition().push_back(partition.c_str());
+    own_subscriber_ = participant_->create_subscriber(own_qos);
+    own_subscriber_failed = own_subscriber_ == nullptr;
+  }
+  if (publisher_ == nullptr || subscriber_ == nullptr || own_subscriber_failed) {
     participant_->delete_contained_entities();
     factory->delete_participant(participant_);
     throw DdsError("cannot create the DDS publisher or subscriber of '" + name + "'" +
@@ -122,6 +129,11 @@ Participant::Participant(const DdsOptions& options, const std::string& name) : n
                                     partition + "'?)"
                               : std::string()));
   }
+}
+
+dds::Subscriber* Participant::SubscriberFor(const std::string& topic) const {
+  if (own_subscriber_ != nullptr && topic.starts_with("pena/sensors/")) return own_subscriber_;
+  return subscriber_;
 }
 
 Participant::~Participant() {

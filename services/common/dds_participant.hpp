@@ -98,6 +98,10 @@ class Participant {
   eprosima::fastdds::dds::DomainParticipant* get() const { return participant_; }
   eprosima::fastdds::dds::Publisher* publisher() const { return publisher_; }
   eprosima::fastdds::dds::Subscriber* subscriber() const { return subscriber_; }
+  // The subscriber whose readers of `topic` are created: a secured participant with a partition
+  // of its own (an entity) reads the sensor topics (pena/sensors/*) only in that partition, the
+  // only one its permissions let it read them in (its own driver's); everything else in all.
+  eprosima::fastdds::dds::Subscriber* SubscriberFor(const std::string& topic) const;
   const std::string& name() const { return name_; }
   // The certificate subject of a secured participant (RFC 2253); empty when open.
   const std::string& identity() const { return identity_; }
@@ -145,6 +149,7 @@ class Participant {
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* own_subscriber_ = nullptr;  // own partition; or null
   std::mutex topics_mutex_;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
 };

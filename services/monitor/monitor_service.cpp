@@ -103,8 +103,17 @@ void MonitorService::Handle(PoseEvent& event) {
   poses_csv_ << line;
 }
 
+bool MonitorService::ExpectedGlobalMap(const std::string& map_id, const char* what) {
+  if (map_id == kGlobalMapId) return true;
+  if (++summary_.global_maps_refused <= 10) {
+    spdlog::warn("{} for map id '{}' refused: the monitor takes the '{}' map only", what, map_id,
+                 kGlobalMapId);
+  }
+  return false;
+}
+
 void MonitorService::Handle(DeltaEvent& event) {
-  if (event.sample.map_id() != kGlobalMapId) return;
+  if (!ExpectedGlobalMap(event.sample.map_id().to_string(), "global map delta")) return;
   const long bytes = SerializedBytes<pena_dds::GlobalMapDeltaPubSubType>(event.sample);
   summary_.bytes_by_topic[topics::kGlobalMapDelta.name] += bytes;
   line_map::MapDelta delta;
@@ -142,7 +151,7 @@ void MonitorService::Handle(DeltaEvent& event) {
 }
 
 void MonitorService::Handle(SnapshotEvent& event) {
-  if (event.sample.map_id() != kGlobalMapId) return;
+  if (!ExpectedGlobalMap(event.sample.map_id().to_string(), "global map snapshot")) return;
   const long bytes = SerializedBytes<pena_dds::GlobalMapSnapshotPubSubType>(event.sample);
   summary_.bytes_by_topic[topics::kGlobalMapSnapshot.name] += bytes;
   const char* status = "stale";
@@ -211,6 +220,7 @@ void MonitorService::WriteOutputs() {
        << ", \"deltas_invalid\": " << summary_.deltas_invalid
        << ", \"snapshots_used\": " << summary_.snapshots_used
        << ", \"snapshots_stale\": " << summary_.snapshots_stale
+       << ", \"global_maps_refused\": " << summary_.global_maps_refused
        << ", \"map_version\": " << summary_.map_version
        << ", \"map_segments\": " << summary_.map_segments << ", \"map_digest\": \""
        << DigestHex(summary_.map_digest) << "\", \"bytes_by_topic\": {";

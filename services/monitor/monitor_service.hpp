@@ -42,6 +42,7 @@ struct MonitorSummary {
   long deltas_invalid = 0;
   long snapshots_used = 0;
   long snapshots_stale = 0;
+  long global_maps_refused = 0;  // deltas and snapshots of another map id than "global"
   std::uint64_t map_version = 0;
   std::size_t map_segments = 0;
   std::uint64_t map_digest = 0;
@@ -74,6 +75,8 @@ class MonitorService {
   void Handle(PoseEvent& event);
   void Handle(DeltaEvent& event);
   void Handle(SnapshotEvent& event);
+  // Whether a global map sample is for the map this monitor follows; counts and logs the rest.
+  bool ExpectedGlobalMap(const std::string& map_id, const char* what);
   void ApplyBuffered();
   void LogMap(const SampleMeta& meta, const char* kind, std::uint64_t from_version,
               std::uint64_t to_version, const char* status, long bytes);

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # LinkExperiments.Quick9k6GatewayMeetsAcceptance: runs `scripts/link-experiments.sh --quick
-# --modes gateway` and checks the link acceptance at 9.6 kbit/s with 4 entities: pose age p99
-# at the command post < 2 s, the post's global map equals fusion's final map and converged
-# < 60 s after its last change, and no map version was skipped at the post through the 30 s
-# outage (every version applied by delta). Exit 77 (skip) without root, ip or tc.
+# --modes gateway --secure` (every participant, the gateways' included, with DDS Security and
+# identities made for the run; docs/security.md) and checks the link acceptance at 9.6 kbit/s
+# with 4 entities: pose age p99 at the command post < 2 s, the post's global map equals fusion's
+# final map and converged < 60 s after its last change, and no map version was skipped at the
+# post through the 30 s outage (every version applied by delta). Exit 77 (skip) without root,
+# ip or tc.
 # usage: quick_link_test.sh REPO BUILD_DIR PENA_GATEWAY (ctest passes the pena-gateway it built;
 # a PENA_GATEWAY in the environment is ignored, so the test always runs the binary under test)
 set -euo pipefail
@@ -17,7 +19,7 @@ export PENA_GATEWAY=$gateway
 out=$(mktemp -d -t pena-link-test.XXXXXX)
 trap 'rm -rf "$out"' EXIT
 status=0
-"$repo/scripts/link-experiments.sh" --quick --modes gateway --no-docs --build "$build" --out "$out" \
+"$repo/scripts/link-experiments.sh" --quick --modes gateway --secure --no-docs --build "$build" --out "$out" \
   > "$out/experiments.log" 2>&1 || status=$?
 if [[ ! -f $out/runs/gateway-9.6/result.json ]]; then
   echo "FAIL: no result (link-experiments.sh exit $status)"; cat "$out/experiments.log"

@@ -1,13 +1,17 @@
 // pena-entity --input dds fed by pena-sensor-replay, all real processes on loopback DDS: a short
 // mission with a firefighter and a robot is replayed onto the live sensor topics (both entities
 // in one domain, so each entity sees and ignores the other's samples), and each entity's
-// trajectory.tum is compared with a pena-entity run reading the same log from its file.
+// trajectory.tum is compared with a pena-entity run reading the same log from its file. Open,
+// and secured with DDS Security (each entity's driver and pena-entity with the entity's
+// identity: an entity then reads only its own driver's sensors, docs/security.md).
 #include <gtest/gtest.h>
 
 #include <csignal>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <thread>
+#include <map>
 #include <regex>
 
 #include "pena/geometry/pose2.hpp"
@@ -81,7 +85,7 @@ Process StartFileEntity(const std::string& id, int domain, const std::filesystem
 // time at the replay's rate 4): wider than the default 0.2 s so a loaded CI machine delaying
 // one topic cannot make a record late and the comparison with the file run exact.
 Process StartLiveEntity(const std::string& id, std::vector<std::string> extra, int domain,
-                    const std::filesystem::path& root) {
+                        const std::filesystem::path& root) {
   Process run{root / ("live-" + id)};
   std::filesystem::create_directories(run.out);
   std::vector<std::string> args = {PENA_ENTITY_BIN, "--input", "dds", "--entity-id", id,
@@ -92,13 +96,14 @@ Process StartLiveEntity(const std::string& id, std::vector<std::string> extra, i
   return run;
 }
 
-Process StartReplay(const std::string& id, int domain, const std::filesystem::path& root) {
+Process StartReplay(const std::string& id, std::vector<std::string> extra, int domain,
+                    const std::filesystem::path& root) {
   Process run{root / ("replay-" + id)};
   std::filesystem::create_directories(run.out);
-  run.pid = testing::Spawn(Concat({PENA_SENSOR_REPLAY_BIN, "--input", (MissionDir() / id).string(),
-                                   "--rate", "4", "--wait-for-readers", "30"},
-                                  DdsArgs(domain)),
-                           run.out / "replay.log");
+  std::vector<std::string> args = {PENA_SENSOR_REPLAY_BIN, "--input", (MissionDir() / id).string(),
+                                   "--rate", "4", "--wait-for-readers", "30"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  run.pid = testing::Spawn(Concat(args, DdsArgs(domain)), run.out / "replay.log");
   return run;
 }
 
@@ -132,20 +137,30 @@ void ExpectSameTrajectory(const std::string& id, const geometry::Trajectory& fil
   EXPECT_EQ(max_heading_rad, 0.0) << id;
 }
 
-TEST(LiveInput, ReplayedSensorTopicsGiveTheTrajectoryOfTheFileRun) {
+// The live run (with `security`: each process with its entity's identity) against the file run.
+void ExpectLiveEqualsFile(bool secured) {
   const int file_domain = testing::TestDomain(40);
   const int live_domain = testing::TestDomain(50);
   testing::UseLoopbackByDefault();
-  const std::filesystem::path root = testing::ScratchDir("live-input");
+  const std::filesystem::path root = testing::ScratchDir(secured ? "live-secured" : "live-input");
   MissionDir();
+  std::map<std::string, std::vector<std::string>> security;
+  if (secured) {
+    const std::filesystem::path ids = root / "identities";
+    const std::string script =
+        (std::filesystem::path(PENA_SOURCE_DIR) / "deploy" / "security" / "make-identities.sh").string();
+    ASSERT_EQ(std::system((script + " " + ids.string() + " ff1 robot1 > /dev/null").c_str()), 0);
+    for (const char* id : {"ff1", "robot1"}) security[id] = {"--security", (ids / id).string()};
+  }
   // The live entities first: the replays wait until every sensor topic has their readers.
   // ff1's kind comes from the start marker (human: not the default, robot), robot1's is given.
-  const Process live_ff1 = StartLiveEntity("ff1", {}, live_domain, root);
-  const Process live_robot = StartLiveEntity("robot1", {"--kind", "robot"}, live_domain, root);
+  const Process live_ff1 = StartLiveEntity("ff1", security["ff1"], live_domain, root);
+  const Process live_robot =
+      StartLiveEntity("robot1", Concat({"--kind", "robot"}, security["robot1"]), live_domain, root);
   ASSERT_GT(live_ff1.pid, 0);
   ASSERT_GT(live_robot.pid, 0);
-  const Process replay_ff1 = StartReplay("ff1", live_domain, root);
-  const Process replay_robot = StartReplay("robot1", live_domain, root);
+  const Process replay_ff1 = StartReplay("ff1", security["ff1"], live_domain, root);
+  const Process replay_robot = StartReplay("robot1", security["robot1"], live_domain, root);
   const std::string replay_log = ExpectExitZero(replay_ff1, "replay.log");
   ExpectExitZero(replay_robot, "replay.log");
   const std::string ff1_log = ExpectExitZero(live_ff1, "entity.log");
@@ -157,7 +172,8 @@ TEST(LiveInput, ReplayedSensorTopicsGiveTheTrajectoryOfTheFileRun) {
   ExpectExitZero(file_robot, "entity.log");
 
   // Every topic of the entity's kind arrived whole, nothing was late or refused, and the other
-  // entity's samples were ignored.
+  // entity's samples were ignored (open) or never reached it (secured: it reads its own
+  // partition only).
   EXPECT_NE(ff1_log.find("live input ended (end marker)"), std::string::npos) << ff1_log;
   EXPECT_NE(ff1_log.find("(human)"), std::string::npos) << ff1_log;
   EXPECT_NE(robot_log.find("(robot)"), std::string::npos) << robot_log;
@@ -172,7 +188,8 @@ TEST(LiveInput, ReplayedSensorTopicsGiveTheTrajectoryOfTheFileRun) {
     EXPECT_EQ(log.find("never arrived"), std::string::npos) << log;
     EXPECT_EQ(log.find("arrived twice"), std::string::npos) << log;
     EXPECT_FALSE(std::regex_search(log, std::regex("[1-9][0-9]* refused"))) << log;
-    EXPECT_EQ(log.find(" 0 samples of other entities ignored"), std::string::npos) << log;
+    EXPECT_EQ(log.find(" 0 samples of other entities ignored") != std::string::npos, secured)
+        << log;
   }
   EXPECT_NE(replay_log.find("and the end marker"), std::string::npos) << replay_log;
 
@@ -180,6 +197,12 @@ TEST(LiveInput, ReplayedSensorTopicsGiveTheTrajectoryOfTheFileRun) {
                        io::ReadTum(live_ff1.out / "trajectory.tum"));
   ExpectSameTrajectory("robot1", io::ReadTum(file_robot.out / "trajectory.tum"),
                        io::ReadTum(live_robot.out / "trajectory.tum"));
+}
+
+TEST(LiveInput, ReplayedSensorTopicsGiveTheTrajectoryOfTheFileRun) { ExpectLiveEqualsFile(false); }
+
+TEST(LiveInput, SecuredEachEntityReadsOnlyItsOwnDriverAndGetsTheSameTrajectory) {
+  ExpectLiveEqualsFile(true);
 }
 
 TEST(LiveInput, EndsOnTheIdleTimeoutAndRefusesAMissingEntityId) {

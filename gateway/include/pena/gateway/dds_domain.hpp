@@ -64,6 +64,8 @@ struct DdsDomainStats {
   std::uint64_t snapshots_forwarded = 0;
   std::uint64_t sync_requests_sent = 0;
   std::uint64_t sync_requests_answered = 0;
+  std::uint64_t samples_refused = 0;    // secured: samples about an entity from a writer outside
+                                        // its partition (services::Participant::AcceptsEntitySample)
 };
 
 class DdsDomain : public DomainSide {
