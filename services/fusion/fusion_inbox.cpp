@@ -320,6 +320,9 @@ void FusionService::Handle(const pena_dds::Annotation& sample, const SampleMeta&
     annotation.kind = FromDds(sample.kind());
     annotation.position_m = {sample.position().x_m(), sample.position().y_m()};
     annotation.radius_m = sample.radius_m();
+    for (const pena_dds::Point2& corner : sample.outline()) {
+      annotation.outline_m.emplace_back(corner.x_m(), corner.y_m());
+    }
     annotation.text = sample.text().to_string();
     annotation.author = sample.author_id().to_string();
     annotation.stamp_s = sample.stamp_s();

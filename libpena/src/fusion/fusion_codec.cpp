@@ -151,10 +151,12 @@ template <typename Parse>
 auto Decode(std::string_view bytes, const std::string& name, Parse parse) {
   ByteReader r(bytes);
   try {
-    if (const std::uint8_t version = r.U8(); version != kFusionCodecVersion) {
-      r.Fail("encoding version " + std::to_string(version) + ", this reader knows " +
+    const std::uint8_t version = r.U8();
+    if (version < 1 || version > kFusionCodecVersion) {
+      r.Fail("encoding version " + std::to_string(version) + ", this reader knows 1 to " +
              std::to_string(kFusionCodecVersion));
     }
+    r.set_version(version);
     auto value = parse(r);
     if (!r.done()) r.Fail("trailing bytes");
     return value;

@@ -91,6 +91,7 @@ struct Annotation {
   AnnotationKind kind = AnnotationKind::kNote;
   Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
   double radius_m = 0.0;  // extent of an area, metres; 0 for a point
+  std::vector<Eigen::Vector2d> outline_m;  // corners of an area's polygon, map frame; may be empty
   std::string text;
   std::string author;
   double stamp_s = 0.0;  // when the operator made it
