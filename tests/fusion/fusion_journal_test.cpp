@@ -72,6 +72,7 @@ std::vector<FusionInput> Mission() {
   inputs.push_back(PutAnnotation{23.0, elevator});
   inputs.push_back(PutAnnotation{23.5, DangerArea()});
   inputs.push_back(OperatorCorrection{24.0, "ff1", geometry::Pose2{0.0, 0.01, 0.0}, "op"});
+  inputs.push_back(MoveEntityWalls{24.5, "ff1", geometry::Pose2{0.5, -0.25, 0.1}, {3, 4, 77}, "op"});
   inputs.push_back(Tick{40.0});  // everyone silent: lost
   return inputs;
 }
