@@ -16,6 +16,7 @@ packages=(
   libcli11-dev libnanoflann-dev zlib1g-dev libsodium-dev libssl-dev openssl
   libfastrtps-dev fastddsgen
   libboost-dev nlohmann-json3-dev
+  libcpp-httplib-dev  # the console's server-library benchmark (tests/console/bench_web_server)
   lintian help2man adduser  # the Debian packages: their test, manual pages, pena-services' postinst
   clang libclang-rt-14-dev  # the sanitizer and libFuzzer build (scripts/sanitizers.sh, scripts/fuzz.sh)
 )

@@ -6,7 +6,10 @@
 #   deploy/demo/run-team.sh OUT_DIR
 #
 # Environment: PENA_BUILD (build tree, default <repo>/build), PENA_DEMO_RATE (5), PENA_DEMO_SEED
-# (1), PENA_DEMO_MISSION (reuse an existing `pena simulate` output instead of simulating),
+# (1), PENA_DEMO_MISSION (reuse an existing `pena simulate` output instead of simulating, or replay
+# a recorded mission without ground truth: one directory per entity holding sensors.penalog or
+# pena-entity --record's recording/sensors.penalog, apriori.csv beside them if there is a plan;
+# then there is no report, the picture is OUT/console.png and OUT/console.svg),
 # PENA_DDS_DOMAIN (default: the first free of 30..99, locked with /tmp/pena-dds-domain-N.lock),
 # PENA_FUSION_ARGS (extra pena-fusion options, e.g. --no-corrections or --raw-corrections to
 # compare with the filtered corrections), PENA_DEMO_LOCKSTEP (1: fusion and entities in lockstep,
@@ -79,8 +82,18 @@ if [[ -z ${PENA_DEMO_MISSION:-} ]]; then
 fi
 MISSION=$(cd "$MISSION" && pwd)
 
+# An entity's log: a simulated mission's sensors.penalog, or what pena-entity --record kept.
+entity_log() {
+  local dir=${1%/}
+  if [[ -f $dir/sensors.penalog ]]; then
+    echo "$dir/sensors.penalog"
+  elif [[ -f $dir/recording/sensors.penalog ]]; then
+    echo "$dir/recording/sensors.penalog"
+  fi
+}
 TEAM_IDS=()
-for dir in "$MISSION"/*/; do [[ -f $dir/sensors.penalog ]] && TEAM_IDS+=("$(basename "$dir")"); done
+for dir in "$MISSION"/*/; do [[ -n $(entity_log "$dir") ]] && TEAM_IDS+=("$(basename "$dir")"); done
+((${#TEAM_IDS[@]})) || { echo "run-team.sh: no entity log (*/sensors.penalog, */recording/sensors.penalog) in $MISSION" >&2; exit 1; }
 SEC=$OUT/security
 if ((SECURE)); then
   # The mission's CAs and one identity per process; kept across runs into the same OUT.
@@ -91,7 +104,7 @@ fi
 cat > "$OUT/fusion.conf" <<CONF
 # pena-fusion config of this demo run (FusionConfig, docs/fusion-service.md)
 state_dir: "fusion/state"
-plan: "$MISSION/apriori.csv"
+$([[ -f $MISSION/apriori.csv ]] && echo "plan: \"$MISSION/apriori.csv\"")
 output_dir: "fusion"
 $(if ((LOCKSTEP)); then
   echo "# Lockstep: attempt a correction at most every $INTERVAL s of mission time per entity; every"
@@ -113,8 +126,7 @@ FUSION_ARGS=()
 ENTITY_ARGS=()
 if ((LOCKSTEP)); then
   # The team's ids: the fusion orders their samples by mission time once all four are heard.
-  TEAM=$(for dir in "$MISSION"/*/; do [[ -f $dir/sensors.penalog ]] && basename "$dir"; done |
-    paste -sd, -)
+  TEAM=$(IFS=,; echo "${TEAM_IDS[*]}")
   FUSION_ARGS=(--lockstep --lockstep-entities "$TEAM")
   ENTITY_ARGS=(--await-corrections "$INTERVAL")
 fi
@@ -147,12 +159,10 @@ fi
 
 ENTITY_PIDS=()
 ENTITIES=()
-for dir in "$MISSION"/*/; do
-  [[ -f $dir/sensors.penalog ]] || continue
-  id=$(basename "$dir")
+for id in "${TEAM_IDS[@]}"; do
   ENTITIES+=("$id")
   rm -rf "${OUT:?}/$id"
-  "$ENTITY_BIN" --input "$dir" --rate "$RATE" --out "$OUT/$id" --domain "$DOMAIN" \
+  "$ENTITY_BIN" --input "$(entity_log "$MISSION/$id")" --rate "$RATE" --out "$OUT/$id" --domain "$DOMAIN" \
     --profiles-file "$DDS_DIR/pena-loopback.xml" --profiles-file "$DDS_DIR/pena-qos.xml" \
     --wait-for-readers 20 --linger 5 "${ENTITY_ARGS[@]}" \
     $( ((SECURE)) && echo "--security $SEC/$id") > "$OUT/logs/$id.log" 2>&1 &
@@ -173,8 +183,10 @@ sleep 2
 SHOT=$REPO/tests/console/console_shot.js
 if [[ -n $CONSOLE_URL && -d $REPO/tests/console/node_modules/puppeteer-core ]] &&
   command -v chromium >/dev/null && command -v node >/dev/null; then
-  if node "$SHOT" --url "$CONSOLE_URL" --out "$OUT/console.png" > "$OUT/logs/console_shot.log" 2>&1; then
-    echo "== console screenshot: $OUT/console.png"
+  # The page as the operator saw it, and the map alone as SVG (the page's "SVG" export).
+  if node "$SHOT" --url "$CONSOLE_URL" --out "$OUT/console.png" > "$OUT/logs/console_shot.log" 2>&1 &&
+    node "$SHOT" --url "$CONSOLE_URL" --out "$OUT/console.svg" >> "$OUT/logs/console_shot.log" 2>&1; then
+    echo "== console screenshot: $OUT/console.png, the map as SVG: $OUT/console.svg"
   else
     echo "run-team.sh: no console screenshot (see $OUT/logs/console_shot.log)"
   fi
@@ -185,8 +197,15 @@ if ! wait "$FUSION_PID"; then
   exit 1
 fi
 ((failed == 0)) || exit 1
+if ! compgen -G "$MISSION/*/truth.tum" > /dev/null; then
+  # A real mission: nothing to score against; the console's picture is the result.
+  echo "== mission finished in $((SECONDS - START)) s; no ground truth in $MISSION, so no report"
+  echo "== output: $OUT (fusion/global_map.csv, <entity>/trajectory.tum$(
+    [[ -f $OUT/console.png ]] && echo ", console.png, console.svg"))"
+  exit 0
+fi
 echo "== mission finished in $((SECONDS - START)) s; writing the report"
 
 "$PENA" report --mission "$MISSION" --run "$OUT" | tee "$OUT/logs/report.log"
 echo "== demo output: $OUT (report.md, report.json, global_map.png/.svg/.csv, <entity>/trajectory.tum$(
-  [[ -f $OUT/console.png ]] && echo ", console.png"))"
+  [[ -f $OUT/console.png ]] && echo ", console.png, console.svg"))"

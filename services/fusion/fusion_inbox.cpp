@@ -79,6 +79,11 @@ void FusionService::Handle(const pena_dds::EntityPose& sample, const SampleMeta&
                SizeOf<pena_dds::EntityPosePubSubType>(sample));
   latest_pose_[entity_id] = {sample.stamp_s(), FromDds(sample.world_from_body()),
                              FromDds(sample.odom_from_body())};
+  if (wall_moves_.contains(entity_id)) {
+    const LatestPose& pose = latest_pose_[entity_id];
+    FollowWallMove(entity_id, pose.stamp_s,
+                   geometry::Compose(pose.world_from_body, geometry::Inverse(pose.odom_from_body)));
+  }
   stats_.Pose(entity_id, static_cast<double>(meta.reception_time_ns - meta.source_time_ns) * 1e-9,
               sample.stamp_s(), FromDds(sample.world_from_body()),
               FromDds(sample.odom_from_body()));
@@ -118,7 +123,17 @@ void FusionService::Handle(const pena_dds::LineMapDelta& sample, const SampleMet
                SizeOf<pena_dds::LineMapDeltaPubSubType>(sample));
   line_map::MapDelta delta = services::FromDds(sample);
   EnsureJoined(entity_id, meta);
-  AfterPlacement(entity_id, Apply(fusion::LocalDelta{NowS(), entity_id, std::move(delta)}));
+  const std::uint64_t version_before = store_->state().local_map(entity_id).version();
+  AfterPlacement(entity_id, Apply(fusion::LocalDelta{NowS(), entity_id, delta}));
+  if (store_->state().local_map(entity_id).version() == version_before) return;  // not applied
+  std::map<std::int64_t, double>& stamps = wall_stamp_s_[entity_id];
+  for (const std::int64_t id : delta.removed) stamps.erase(id);
+  std::vector<std::int64_t> added_ids;
+  for (const line_map::LineSegment& segment : delta.added) {
+    stamps[segment.id] = sample.stamp_s();
+    added_ids.push_back(segment.id);
+  }
+  FollowWallMove(entity_id, sample.stamp_s(), added_ids);
 }
 
 void FusionService::Handle(const pena_dds::LineMapSnapshot& sample, const SampleMeta& meta) {
@@ -130,6 +145,13 @@ void FusionService::Handle(const pena_dds::LineMapSnapshot& sample, const Sample
   // Already held (the entity's final snapshot after every delta arrived): nothing to journal.
   const line_map::LineMap& local = store_->state().local_map(entity_id);
   if (local.version() == snapshot.version && line_map::SameMap(local.Snapshot(), snapshot)) return;
+  std::map<std::int64_t, double> stamps;  // a wall not heard before dates from the snapshot
+  const std::map<std::int64_t, double>& known = wall_stamp_s_[entity_id];
+  for (const line_map::LineSegment& segment : snapshot.segments) {
+    const auto it = known.find(segment.id);
+    stamps[segment.id] = it == known.end() ? sample.stamp_s() : it->second;
+  }
+  wall_stamp_s_[entity_id] = std::move(stamps);
   AfterPlacement(entity_id, Apply(fusion::LocalSnapshot{NowS(), entity_id, std::move(snapshot)}));
 }
 
@@ -286,6 +308,7 @@ void FusionService::HandleOperatorMove(const pena_dds::OperatorCorrection& sampl
     correction.confidence = 1.0;
     // An operator's correction: the entity applies it whatever its size (correction_gate).
     SendCorrection(entity_id, correction, 0, store_->state().global_version(), author);
+    StartWallMove(entity_id, record, correction.map_from_odom);
   }
   if (corrections_) corrections_->Forget(entity_id);  // the entity's frame is the operator's now
   stats_.Add("operator_corrections");
@@ -293,6 +316,64 @@ void FusionService::HandleOperatorMove(const pena_dds::OperatorCorrection& sampl
                author, id, entity_id, corrected_from_wrong.x_m, corrected_from_wrong.y_m,
                angle_deg, record.from_stamp_s);
   AnswerOperator(sample, "");
+}
+
+void FusionService::StartWallMove(const std::string& entity_id, const OperatorLogRecord& record,
+                                  const geometry::Pose2& corrected_map_from_odom) {
+  WallMove move;
+  move.correction_id = record.correction_id;
+  move.author = record.operator_id;
+  move.corrected_from_wrong = record.corrected_from_wrong;
+  move.from_stamp_s = record.from_stamp_s;
+  move.corrected_map_from_odom = corrected_map_from_odom;
+  wall_moves_[entity_id] = std::move(move);
+  // The walls it began after the origin until now; those still on the way follow as they come.
+  std::vector<std::int64_t> so_far;
+  for (const auto& [id, stamp_s] : wall_stamp_s_[entity_id]) {
+    if (stamp_s > record.from_stamp_s) so_far.push_back(id);
+  }
+  FollowWallMove(entity_id, std::nextafter(record.from_stamp_s, 1e300), so_far);
+}
+
+void FusionService::FollowWallMove(const std::string& entity_id, double delta_stamp_s,
+                                   const std::vector<std::int64_t>& added_ids) {
+  const auto it = wall_moves_.find(entity_id);
+  if (it == wall_moves_.end()) return;
+  WallMove& move = it->second;
+  // Data up to the origin was right; data from the entity's first pose in the new frame on
+  // arrives corrected (the walls its grid held at the correction are stamped before that). A
+  // wall begun before the origin and extended after it stays: its askew pieces, too far off to
+  // merge with it, are walls of their own.
+  if (delta_stamp_s <= move.from_stamp_s) return;
+  if (move.applied_stamp_s > 0.0 && delta_stamp_s >= move.applied_stamp_s) return;
+  fusion::MoveEntityWalls walls{NowS(), entity_id, move.corrected_from_wrong, {}, move.author};
+  for (const std::int64_t id : added_ids) {
+    if (move.moved.insert(id).second) walls.segment_ids.push_back(id);
+  }
+  if (walls.segment_ids.empty()) return;
+  const fusion::FusionOutput output = Apply(walls);
+  if (!output.problem.empty()) {
+    spdlog::warn("operator correction {}: walls of {} not moved: {}", move.correction_id,
+                 entity_id, output.problem);
+    return;
+  }
+  stats_.Add("operator_moved_walls", static_cast<long>(walls.segment_ids.size()));
+  spdlog::info("operator correction {}: {} wall(s) {} mapped from {:.3f} s moved", move.correction_id,
+               walls.segment_ids.size(), entity_id, move.from_stamp_s);
+}
+
+void FusionService::FollowWallMove(const std::string& entity_id, double pose_stamp_s,
+                                   const geometry::Pose2& map_from_odom) {
+  const auto it = wall_moves_.find(entity_id);
+  if (it == wall_moves_.end() || it->second.applied_stamp_s > 0.0) return;
+  const geometry::Pose2& told = it->second.corrected_map_from_odom;
+  // The frame it was told (the entity sets it exactly; its poses carry it to 1e-9 m or so).
+  if (std::hypot(map_from_odom.x_m - told.x_m, map_from_odom.y_m - told.y_m) < 0.01 &&
+      std::abs(geometry::NormalizeAngle(map_from_odom.theta_rad - told.theta_rad)) < 0.005) {
+    it->second.applied_stamp_s = pose_stamp_s;
+    spdlog::info("operator correction {}: {} in its corrected frame from {:.3f} s",
+                 it->second.correction_id, entity_id, pose_stamp_s);
+  }
 }
 
 void FusionService::Handle(const pena_dds::Annotation& sample, const SampleMeta& meta) {
@@ -320,6 +401,9 @@ void FusionService::Handle(const pena_dds::Annotation& sample, const SampleMeta&
     annotation.kind = FromDds(sample.kind());
     annotation.position_m = {sample.position().x_m(), sample.position().y_m()};
     annotation.radius_m = sample.radius_m();
+    for (const pena_dds::Point2& corner : sample.outline()) {
+      annotation.outline_m.emplace_back(corner.x_m(), corner.y_m());
+    }
     annotation.text = sample.text().to_string();
     annotation.author = sample.author_id().to_string();
     annotation.stamp_s = sample.stamp_s();

@@ -93,6 +93,16 @@ class FusionService {
   void Handle(const pena_dds::OperatorCorrection& sample, const SampleMeta& meta);
   // The operator's three-point rotation or translation (paper section 4.1) of one entity.
   void HandleOperatorMove(const pena_dds::OperatorCorrection& sample);
+  // Paper 4.1 for an entity with a known start: its walls mapped from the correction's origin
+  // time on, until it applies the correction, move with it in the global map (MoveEntityWalls).
+  void StartWallMove(const std::string& entity_id, const OperatorLogRecord& record,
+                     const geometry::Pose2& corrected_map_from_odom);
+  // A delta or pose of an entity with a wall move in flight: moves the walls the delta began in
+  // the wrong frame, or notes from which stamp on the entity's data is corrected.
+  void FollowWallMove(const std::string& entity_id, double delta_stamp_s,
+                      const std::vector<std::int64_t>& added_ids);
+  void FollowWallMove(const std::string& entity_id, double pose_stamp_s,
+                      const geometry::Pose2& map_from_odom);
   // Writes the answer to an operator's correction: applied (refusal empty) or why not.
   void AnswerOperator(const pena_dds::OperatorCorrection& sample, const std::string& refusal);
   void Handle(const pena_dds::Annotation& sample, const SampleMeta& meta);
@@ -168,6 +178,20 @@ class FusionService {
     geometry::Pose2 odom_from_body;
   };
   std::map<std::string, LatestPose> latest_pose_;
+  // Per entity, per local segment id: the mission stamp of the delta that added it (which of its
+  // walls an operator's move from a stamp on concerns).
+  std::map<std::string, std::map<std::int64_t, double>> wall_stamp_s_;
+  // An operator's move of a known-start entity in flight (StartWallMove).
+  struct WallMove {
+    std::string correction_id;
+    std::string author;
+    geometry::Pose2 corrected_from_wrong;
+    double from_stamp_s = 0.0;
+    geometry::Pose2 corrected_map_from_odom;  // the frame the entity was told to take
+    double applied_stamp_s = 0.0;             // its first pose in that frame (0: none yet)
+    std::set<std::int64_t> moved;             // segment ids moved by this correction
+  };
+  std::map<std::string, WallMove> wall_moves_;
   // Under send_mutex_: per entity, the stamp of its latest pose when an operator moved it. An
   // automatic correction for a reference scan up to then was computed in the frame the operator
   // replaced: it is sent as a mere answer (confidence 0) so that it cannot undo the move.

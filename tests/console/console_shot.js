@@ -4,7 +4,7 @@
 // screenshot of the whole page, or with --map-only yes the map's canvas alone (the page's "PNG"
 // export). Needs no ground truth: it draws what the console holds (fusion's global map, the
 // poses and trails, marks and corrections), so it serves real missions as well as simulated
-// ones. Used by deploy/demo/run-team.sh for OUT/console.png.
+// ones. Used by deploy/demo/run-team.sh for OUT/console.png and OUT/console.svg.
 //
 //   node console_shot.js --url URL --out FILE.png|FILE.svg [--map-only yes] [--min-entities 1]
 //                        [--width 1280] [--height 800] [--chromium /usr/bin/chromium]

@@ -26,6 +26,18 @@ fs::path FreshDir(const std::string& name) {
   return dir;
 }
 
+// A dangerous area drawn as a polygon (the console's "Area..." gesture).
+Annotation DangerArea() {
+  Annotation area;
+  area.kind = AnnotationKind::kDangerousArea;
+  area.outline_m = {{10.0, 1.0}, {14.5, 1.25}, {14.0, 4.75}, {10.125, 4.0}};
+  area.position_m = {12.15625, 2.75};
+  area.radius_m = 2.9;
+  area.text = "gas";
+  area.author = "op";
+  return area;
+}
+
 // A mission's worth of varied inputs: plan, joins, deltas with a gap and a snapshot, corrections,
 // annotations, ticks that mark an entity lost.
 std::vector<FusionInput> Mission() {
@@ -58,7 +70,9 @@ std::vector<FusionInput> Mission() {
   elevator.text = "lift B";
   elevator.author = "op";
   inputs.push_back(PutAnnotation{23.0, elevator});
+  inputs.push_back(PutAnnotation{23.5, DangerArea()});
   inputs.push_back(OperatorCorrection{24.0, "ff1", geometry::Pose2{0.0, 0.01, 0.0}, "op"});
+  inputs.push_back(MoveEntityWalls{24.5, "ff1", geometry::Pose2{0.5, -0.25, 0.1}, {3, 4, 77}, "op"});
   inputs.push_back(Tick{40.0});  // everyone silent: lost
   return inputs;
 }
@@ -123,6 +137,48 @@ TEST(FusionStore, CheckpointPlusJournalRebuildsTheUninterruptedState) {
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
   EXPECT_LE(files, 4u);  // old generations deleted
   fs::remove_all(dir);
+}
+
+TEST(FusionStore, DangerAreaPolygonSurvivesAKillAndARestart) {
+  for (const std::size_t checkpoint_every : {std::size_t{1000}, std::size_t{1}}) {
+    const fs::path dir = FreshDir("polygon");
+    {
+      FusionStore store(dir, FusionStoreOptions{{}, {}, checkpoint_every});
+      store.Handle(PutAnnotation{1.0, DangerArea()});
+      Annotation moved = store.state().annotations().at(0);  // moved by the operator
+      for (Eigen::Vector2d& corner : moved.outline_m) corner += Eigen::Vector2d(0.5, -0.25);
+      store.Handle(PutAnnotation{2.0, moved});
+    }  // "kill -9": no checkpoint at exit
+    FusionStore recovered(dir, FusionStoreOptions{{}, {}, checkpoint_every});
+    ASSERT_EQ(recovered.state().annotations().size(), 1u);
+    const Annotation area = recovered.state().annotations().at(0);
+    const Annotation drawn = DangerArea();
+    ASSERT_EQ(area.outline_m.size(), drawn.outline_m.size()) << "every " << checkpoint_every;
+    for (std::size_t i = 0; i < drawn.outline_m.size(); ++i) {
+      EXPECT_EQ(area.outline_m[i], drawn.outline_m[i] + Eigen::Vector2d(0.5, -0.25)) << i;
+    }
+    EXPECT_EQ(area.kind, AnnotationKind::kDangerousArea);
+    EXPECT_EQ(area.text, "gas");
+    fs::remove_all(dir);
+  }
+}
+
+TEST(FusionCodec, ReadsAnAnnotationWrittenBeforeOutlinesWereKept) {
+  Annotation exit;
+  exit.kind = AnnotationKind::kLandmark;
+  exit.position_m = {3.0, 4.0};
+  exit.text = "exit";
+  exit.author = "op";
+  std::string bytes = EncodeInput(PutAnnotation{5.0, exit});
+  ASSERT_EQ(bytes.substr(bytes.size() - 8), std::string(8, '\0'));  // the empty outline's count
+  bytes.resize(bytes.size() - 8);  // version 1 ends before it
+  bytes[0] = 1;
+  const auto input = std::get<PutAnnotation>(DecodeInput(bytes));
+  EXPECT_EQ(input.annotation.position_m, exit.position_m);
+  EXPECT_EQ(input.annotation.text, "exit");
+  EXPECT_TRUE(input.annotation.outline_m.empty());
+  bytes[0] = static_cast<char>(kFusionCodecVersion + 1);
+  EXPECT_THROW(DecodeInput(bytes), io::InputError);
 }
 
 TEST(FusionStore, JournalsTicksOnlyWhenTheyChangeSomething) {

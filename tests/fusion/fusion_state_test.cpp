@@ -1,6 +1,8 @@
 // The fusion's bookkeeping: version gaps, lifecycle, annotations, refused inputs.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "fusion_test_util.hpp"
 #include "pena/fusion/fusion_state.hpp"
 
@@ -33,6 +35,60 @@ TEST(FusionState, AsksForASnapshotOnAVersionGapAndRecoversFromIt) {
   EXPECT_FALSE(stale.snapshot_request);
   EXPECT_TRUE(stale.problem.empty());
   EXPECT_EQ(fusion.local_map("ff1").version(), 3u);
+}
+
+// True if the global map holds a wall from a to b (either way round) within 1 mm.
+bool HoldsWall(const FusionState& fusion, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  for (const line_map::LineSegment& wall : fusion.GlobalSnapshot().segments) {
+    const geometry::Segment2& s = wall.segment;
+    if (((s.start_m - a).norm() < 1e-3 && (s.end_m - b).norm() < 1e-3) ||
+        ((s.start_m - b).norm() < 1e-3 && (s.end_m - a).norm() < 1e-3)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+TEST(FusionState, OperatorWallMoveRotatesOnlyTheWallsMappedInTheWrongFrame) {
+  FusionState fusion;
+  fusion.Handle(EntityJoin{0.0, "ff1", geometry::Pose2{}});  // a known start
+  line_map::LineMap sender;
+  // Before the heading went wrong: a wall along x. After: a wall mapped 20 deg askew about
+  // (5, 0), the rotation origin.
+  fusion.Handle(LocalDelta{1.0, "ff1", sender.Integrate({Wall(0, 0, 5, 0)}, "ff1")});
+  const double angle_rad = 20.0 * M_PI / 180.0;
+  const geometry::Pose2 about_origin_wrong =
+      geometry::Compose(geometry::Pose2{5.0, 0.0, angle_rad}, geometry::Pose2{-5.0, 0.0, 0.0});
+  const std::vector<line_map::LineSegment> askew =
+      test::Moved(about_origin_wrong, {Wall(6, 1, 6, 4)});
+  const line_map::MapDelta wrong = sender.Integrate(askew, "ff1");
+  fusion.Handle(LocalDelta{2.0, "ff1", wrong});
+  ASSERT_EQ(wrong.added.size(), 1u);
+  // The operator's three-point rotation: corrected_from_wrong turns it back about (5, 0).
+  const geometry::Pose2 corrected_from_wrong = geometry::Inverse(about_origin_wrong);
+  const FusionOutput moved = fusion.Handle(
+      MoveEntityWalls{3.0, "ff1", corrected_from_wrong, {wrong.added[0].id, 999}, "op"});
+  ASSERT_TRUE(moved.problem.empty()) << moved.problem;
+  EXPECT_TRUE(moved.global_delta.has_value());
+  EXPECT_TRUE(HoldsWall(fusion, {0, 0}, {5, 0}));  // mapped before the origin: stays
+  EXPECT_TRUE(HoldsWall(fusion, {6, 1}, {6, 4}));  // mapped askew: back where it belongs
+  EXPECT_EQ(fusion.GlobalSnapshot().segments.size(), 2u);
+  // Walls mapped after the entity took the corrected frame arrive right and are not moved.
+  fusion.Handle(LocalDelta{4.0, "ff1", sender.Integrate({Wall(8, 0, 8, 4)}, "ff1")});
+  EXPECT_TRUE(HoldsWall(fusion, {8, 0}, {8, 4}));
+  // The moves are part of the state: a checkpoint keeps them.
+  const FusionState restored = FusionState::FromCheckpoint(fusion.Checkpoint());
+  EXPECT_TRUE(line_map::SameMap(restored.GlobalSnapshot(), fusion.GlobalSnapshot()));
+  EXPECT_EQ(restored.entity("ff1")->moved_walls.size(), 1u);
+  // Undone (the inverse on the same walls): the askew wall is back where ff1 mapped it.
+  fusion.Handle(MoveEntityWalls{5.0, "ff1", about_origin_wrong, {wrong.added[0].id}, "op"});
+  EXPECT_TRUE(HoldsWall(fusion, askew[0].segment.start_m, askew[0].segment.end_m));
+  EXPECT_TRUE(HoldsWall(fusion, {0, 0}, {5, 0}));
+  // Refused without change: an unknown entity, a transform that is not finite.
+  EXPECT_FALSE(fusion.Handle(MoveEntityWalls{6.0, "nobody", {}, {1}, "op"}).problem.empty());
+  EXPECT_FALSE(
+      fusion.Handle(MoveEntityWalls{6.0, "ff1", geometry::Pose2{NAN, 0, 0}, {1}, "op"})
+          .problem.empty());
 }
 
 TEST(FusionState, MarksASilentEntityLostAndKeepsItsWalls) {

@@ -86,6 +86,9 @@ class ByteReader {
   [[noreturn]] void Fail(const std::string& what) const { throw ByteError(what, offset_); }
   bool done() const { return offset_ == bytes_.size(); }
   std::size_t offset() const { return offset_; }
+  // The codec version the bytes were written with (fields added later are absent before it).
+  std::uint8_t version() const { return version_; }
+  void set_version(std::uint8_t version) { version_ = version; }
 
  private:
   void Need(std::uint64_t size, const std::string& what) const {
@@ -95,6 +98,7 @@ class ByteReader {
                       offset_);
     }
   }
+  std::uint8_t version_ = 0;
   std::string_view bytes_;
   std::size_t offset_ = 0;
 };

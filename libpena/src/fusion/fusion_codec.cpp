@@ -56,6 +56,13 @@ void PutFields(ByteWriter& w, const RemoveAnnotation& v) {
 }
 void PutFields(ByteWriter&, const Tick&) {}
 void PutFields(ByteWriter&, const Publish&) {}
+void PutFields(ByteWriter& w, const MoveEntityWalls& v) {
+  w.Text(v.entity_id);
+  Put(w, v.corrected_from_wrong);
+  w.U64(v.segment_ids.size());
+  for (const std::int64_t id : v.segment_ids) w.I64(id);
+  w.Text(v.author);
+}
 
 FusionInput GetInput(ByteReader& r, std::uint8_t kind, double stamp_s) {
   switch (kind) {
@@ -94,6 +101,14 @@ FusionInput GetInput(ByteReader& r, std::uint8_t kind, double stamp_s) {
     }
     case 10: return Tick{stamp_s};
     case 11: return Publish{stamp_s};
+    case 12: {
+      MoveEntityWalls v{stamp_s, r.Text(), {}, {}, {}};
+      v.corrected_from_wrong = GetPose(r);
+      v.segment_ids.resize(r.Count(8));
+      for (std::int64_t& id : v.segment_ids) id = r.I64();
+      v.author = r.Text();
+      return v;
+    }
     default: r.Fail("unknown input kind " + std::to_string(kind));
   }
 }
@@ -117,6 +132,11 @@ void PutStatus(ByteWriter& w, const EntityStatus& s) {
   w.F64(p.local_length_m);
   w.Text(p.reason);
   w.F64(s.placement_length_m);
+  w.U64(s.moved_walls.size());
+  for (const auto& [id, move] : s.moved_walls) {
+    w.I64(id);
+    Put(w, move);
+  }
 }
 
 EntityStatus GetStatus(ByteReader& r) {
@@ -143,6 +163,13 @@ EntityStatus GetStatus(ByteReader& r) {
   p.local_length_m = r.F64();
   p.reason = r.Text();
   s.placement_length_m = r.F64();
+  if (r.version() >= 3) {  // before it, no walls were moved one by one
+    const std::size_t moves = r.Count(4 * 8);
+    for (std::size_t i = 0; i < moves; ++i) {
+      const std::int64_t id = r.I64();
+      s.moved_walls[id] = GetPose(r);
+    }
+  }
   return s;
 }
 
@@ -151,10 +178,12 @@ template <typename Parse>
 auto Decode(std::string_view bytes, const std::string& name, Parse parse) {
   ByteReader r(bytes);
   try {
-    if (const std::uint8_t version = r.U8(); version != kFusionCodecVersion) {
-      r.Fail("encoding version " + std::to_string(version) + ", this reader knows " +
+    const std::uint8_t version = r.U8();
+    if (version < 1 || version > kFusionCodecVersion) {
+      r.Fail("encoding version " + std::to_string(version) + ", this reader knows 1 to " +
              std::to_string(kFusionCodecVersion));
     }
+    r.set_version(version);
     auto value = parse(r);
     if (!r.done()) r.Fail("trailing bytes");
     return value;

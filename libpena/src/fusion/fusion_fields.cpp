@@ -107,6 +107,11 @@ void Put(ByteWriter& w, const Annotation& a) {
   w.Text(a.text);
   w.Text(a.author);
   w.F64(a.stamp_s);
+  w.U64(a.outline_m.size());
+  for (const Eigen::Vector2d& corner : a.outline_m) {
+    w.F64(corner.x());
+    w.F64(corner.y());
+  }
 }
 Annotation GetAnnotation(ByteReader& r) {
   Annotation a;
@@ -122,6 +127,13 @@ Annotation GetAnnotation(ByteReader& r) {
   a.text = r.Text();
   a.author = r.Text();
   a.stamp_s = r.F64();
+  if (r.version() >= 2) {  // version 1 kept no outline
+    a.outline_m.resize(r.Count(2 * 8));
+    for (Eigen::Vector2d& corner : a.outline_m) {
+      corner.x() = r.F64();
+      corner.y() = r.F64();
+    }
+  }
   return a;
 }
 

@@ -65,6 +65,7 @@ FusionOutput FusionState::Handle(const FusionInput& input) {
         if constexpr (std::is_same_v<T, RemoveAnnotation>) return OnRemove(value);
         if constexpr (std::is_same_v<T, Tick>) return OnTick(value);
         if constexpr (std::is_same_v<T, Publish>) return OnPublish(value);
+        if constexpr (std::is_same_v<T, MoveEntityWalls>) return OnMoveWalls(value);
       },
       input);
 }
@@ -159,6 +160,7 @@ FusionOutput FusionState::OnDelta(const LocalDelta& input) {
   switch (result.status) {
     case line_map::ApplyStatus::kApplied:
       entity.status.awaiting_snapshot = false;
+      for (const std::int64_t id : input.delta.removed) entity.status.moved_walls.erase(id);
       AfterLocalChange(entity, output);
       break;
     case line_map::ApplyStatus::kStale:
@@ -193,6 +195,8 @@ FusionOutput FusionState::OnSnapshot(const LocalSnapshot& input) {
   // The sender's map is authoritative (it may have restarted from scratch); later deltas follow it.
   entity.local = std::move(*local);
   entity.status.awaiting_snapshot = false;
+  std::erase_if(entity.status.moved_walls,
+                [&entity](const auto& move) { return !entity.local.HasSegment(move.first); });
   AfterLocalChange(entity, output);
   return output;
 }
@@ -225,6 +229,27 @@ FusionOutput FusionState::OnOperator(const OperatorCorrection& input) {
   } else {
     auto& alignment = it->second.status.map_from_entity;
     alignment = geometry::Compose(input.corrected_from_wrong, *alignment);
+    output.changed = true;
+    Changed(output);
+  }
+  return output;
+}
+
+FusionOutput FusionState::OnMoveWalls(const MoveEntityWalls& input) {
+  FusionOutput output;
+  const auto it = entities_.find(input.entity_id);
+  if (it == entities_.end() || !it->second.status.map_from_entity) {
+    output.problem = "operator move of " + input.entity_id + "'s walls by " + input.author +
+                     ": entity unknown or not placed";
+  } else if (!detail::Finite(input.corrected_from_wrong)) {
+    output.problem = "operator move of " + input.entity_id + "'s walls: transform not finite";
+  } else {
+    Entity& entity = it->second;
+    for (const std::int64_t id : input.segment_ids) {
+      if (!entity.local.HasSegment(id)) continue;  // merged away since: nothing left to move
+      const auto [move, added] = entity.status.moved_walls.try_emplace(id, geometry::Pose2{});
+      move->second = geometry::Compose(input.corrected_from_wrong, move->second);
+    }
     output.changed = true;
     Changed(output);
   }
@@ -270,8 +295,12 @@ void FusionState::Rebuild(FusionOutput& output) {
   for (const auto& [id, entity] : entities_) {
     if (!entity.status.map_from_entity) continue;
     MergeSource source{id, entity.local.segments()};
+    const std::map<std::int64_t, geometry::Pose2>& moved = entity.status.moved_walls;
     for (LineSegment& segment : source.segments) {
-      segment = Aligned(segment, *entity.status.map_from_entity);
+      const auto move = moved.find(segment.id);
+      segment = Aligned(segment, move == moved.end()
+                                     ? *entity.status.map_from_entity
+                                     : geometry::Compose(move->second, *entity.status.map_from_entity));
     }
     sources.push_back(std::move(source));
   }

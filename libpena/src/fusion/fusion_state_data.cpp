@@ -10,6 +10,7 @@ namespace pena::fusion {
 namespace {
 
 constexpr std::size_t kMaxAnnotationText = 4096;
+constexpr std::size_t kMaxOutlineCorners = 64;  // OUTLINE_MAX_POINTS on the wire
 
 std::string CheckAnnotation(const Annotation& annotation) {
   const std::string name = "annotation " + std::to_string(annotation.id);
@@ -24,6 +25,15 @@ std::string CheckAnnotation(const Annotation& annotation) {
     return name + ": text over 4096 bytes or author over 256 bytes";
   }
   if (annotation.author.empty()) return name + ": author is empty";
+  if (annotation.outline_m.size() > kMaxOutlineCorners) {
+    return name + ": outline of " + std::to_string(annotation.outline_m.size()) +
+           " corners (at most 64)";
+  }
+  for (std::size_t i = 0; i < annotation.outline_m.size(); ++i) {
+    if (!annotation.outline_m[i].allFinite()) {
+      return name + ": outline corner " + std::to_string(i) + " is not finite";
+    }
+  }
   return {};
 }
 

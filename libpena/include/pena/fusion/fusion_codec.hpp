@@ -12,13 +12,14 @@
 
 namespace pena::fusion {
 
-// The encoding version written, and the only one read.
-inline constexpr std::uint8_t kFusionCodecVersion = 1;
+// The encoding version written; every version from 1 up to it is read (2 added the outline of an
+// annotation, 3 an entity's operator-moved walls).
+inline constexpr std::uint8_t kFusionCodecVersion = 3;
 
 // Serialises one input.
 std::string EncodeInput(const FusionInput& input);
 // Parses EncodeInput's bytes; throws io::InputError(name, 0, what) naming the byte offset for
-// truncated or malformed bytes or another encoding version.
+// truncated or malformed bytes or an unknown encoding version.
 FusionInput DecodeInput(std::string_view bytes, const std::string& name = "fusion input");
 
 // Serialises the whole state.

@@ -75,6 +75,19 @@ struct OperatorCorrection {
   std::string author;
 };
 
+// An operator's correction of an entity with a known start (paper section 4.1: its data "from
+// the origin onwards" moves): only the listed segments of its local map, the walls it mapped in
+// the wrong frame from the correction's origin time until it applied the correction, move by
+// corrected_from_wrong (map frame) in the global map; its earlier walls stay, its later ones
+// arrive corrected. A segment moved twice composes both; one the entity removes forgets it.
+struct MoveEntityWalls {
+  double stamp_s = 0.0;
+  std::string entity_id;
+  geometry::Pose2 corrected_from_wrong;
+  std::vector<std::int64_t> segment_ids;  // ids in the entity's local map
+  std::string author;
+};
+
 // What an operator annotation marks (the paper's "dangerous area", "victim found", landmarks).
 enum class AnnotationKind : std::uint8_t {
   kDangerousArea = 0,
@@ -91,6 +104,7 @@ struct Annotation {
   AnnotationKind kind = AnnotationKind::kNote;
   Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
   double radius_m = 0.0;  // extent of an area, metres; 0 for a point
+  std::vector<Eigen::Vector2d> outline_m;  // corners of an area's polygon, map frame; may be empty
   std::string text;
   std::string author;
   double stamp_s = 0.0;  // when the operator made it
@@ -123,7 +137,7 @@ struct Publish {
 // Any input; the journal stores them in this order.
 using FusionInput = std::variant<SetPlan, EntityJoin, EntityLeave, EntityHeartbeat, LocalDelta,
                                  LocalSnapshot, AlignmentCorrection, OperatorCorrection,
-                                 PutAnnotation, RemoveAnnotation, Tick, Publish>;
+                                 PutAnnotation, RemoveAnnotation, Tick, Publish, MoveEntityWalls>;
 
 // The receive stamp of any input, seconds.
 double StampOf(const FusionInput& input);

@@ -53,6 +53,9 @@ struct EntityStatus {
   bool awaiting_snapshot = false;   // a delta did not follow its local map: snapshot asked
   PlacementResult placement;        // last placement attempt (unplaced entities)
   double placement_length_m = 0.0;  // local wall length at that attempt
+  // Operator moves of single local segments (MoveEntityWalls), by segment id: the segment is at
+  // moved_walls[id] * map_from_entity * local in the global map.
+  std::map<std::int64_t, geometry::Pose2> moved_walls;
 };
 
 // A lifecycle transition.
@@ -138,6 +141,7 @@ class FusionState {
   FusionOutput OnSnapshot(const LocalSnapshot& input);
   FusionOutput OnAlignment(const AlignmentCorrection& input);
   FusionOutput OnOperator(const OperatorCorrection& input);
+  FusionOutput OnMoveWalls(const MoveEntityWalls& input);
   FusionOutput OnPut(const PutAnnotation& input);
   FusionOutput OnRemove(const RemoveAnnotation& input);
   FusionOutput OnTick(const Tick& input);

@@ -65,6 +65,8 @@ class LineMap {
   std::vector<LineSegment> segments() const;
   // Number of segments.
   std::size_t size() const { return segments_.size(); }
+  // True if a segment with this id is in the map.
+  bool HasSegment(std::int64_t id) const { return segments_.contains(id); }
   // The options in use.
   const LineMapOptions& options() const { return options_; }
 
