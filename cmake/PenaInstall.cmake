@@ -8,7 +8,7 @@ include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(PENA_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/pena)
-set(PENA_MODULES geometry sensors dead_reckoning scan_matching odometry slam localisation line_map
+set(PENA_MODULES common geometry sensors dead_reckoning scan_matching odometry slam localisation line_map
                  grid io eval viz sim pipeline fusion)
 list(TRANSFORM PENA_MODULES PREPEND pena_ OUTPUT_VARIABLE pena_module_targets)
 install(TARGETS ${pena_module_targets} pena_all pena_proto EXPORT penaTargets

@@ -5,7 +5,7 @@
 #include <limits>
 #include <numbers>
 
-#include "pena/gateway/map_packing.hpp"
+#include "pena/line_map/map_packing.hpp"
 
 namespace pena::gateway {
 namespace {
@@ -119,14 +119,14 @@ void PutMap(const MapChange& change, link::MapUpdate* out) {
   if (const auto* delta = std::get_if<line_map::MapDelta>(&change.change)) {
     out->set_from_version(delta->from_version);
     out->set_to_version(delta->to_version);
-    out->set_packed(PackDelta(*delta));
+    out->set_packed(line_map::PackDelta(*delta));
     return;
   }
   const auto& snapshot = std::get<line_map::MapSnapshot>(change.change);
   out->set_to_version(snapshot.version);
   out->set_snapshot(true);
   out->set_reset(change.reset);
-  out->set_packed(PackSnapshot(snapshot));
+  out->set_packed(line_map::PackSnapshot(snapshot));
 }
 
 std::optional<DomainItem> Fail(std::string* error, const std::string& what) {
@@ -180,7 +180,7 @@ std::optional<DomainItem> GetMap(const link::MapUpdate& m, std::string* error) {
   MapChange change{m.map_id(), line_map::MapDelta{}, m.reset()};
   if (m.map_id().empty()) return Fail(error, "map update: empty map_id");
   if (m.snapshot()) {
-    std::optional<line_map::MapSnapshot> snapshot = UnpackSnapshot(m.packed(), &why);
+    std::optional<line_map::MapSnapshot> snapshot = line_map::UnpackSnapshot(m.packed(), &why);
     if (!snapshot) return Fail(error, "map update " + m.map_id() + ": snapshot " + why);
     snapshot->version = m.to_version();
     std::int64_t previous = 0;
@@ -195,7 +195,7 @@ std::optional<DomainItem> GetMap(const link::MapUpdate& m, std::string* error) {
     return Fail(error, "map update " + m.map_id() + ": delta " + std::to_string(m.from_version()) +
                            " -> " + std::to_string(m.to_version()) + " is not one step");
   }
-  std::optional<line_map::MapDelta> delta = UnpackDelta(m.packed(), &why);
+  std::optional<line_map::MapDelta> delta = line_map::UnpackDelta(m.packed(), &why);
   if (!delta) return Fail(error, "map update " + m.map_id() + ": delta " + why);
   delta->from_version = m.from_version();
   delta->to_version = m.to_version();

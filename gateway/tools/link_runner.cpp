@@ -11,7 +11,7 @@
 #include <type_traits>
 
 #include "pena/gateway/domain_side.hpp"
-#include "pena/gateway/map_packing.hpp"
+#include "pena/line_map/map_packing.hpp"
 
 namespace pena::gateway {
 namespace {
@@ -23,7 +23,7 @@ double WallClockS() {
 // FNV-1a of a map's packed snapshot and version: equal digests mean equal maps.
 std::string Digest(const line_map::LineMap& map) {
   std::uint64_t hash = 1469598103934665603ULL;
-  for (char byte : PackSnapshot(map.Snapshot()) + std::to_string(map.version())) {
+  for (char byte : line_map::PackSnapshot(map.Snapshot()) + std::to_string(map.version())) {
     hash = (hash ^ static_cast<std::uint8_t>(byte)) * 1099511628211ULL;
   }
   char text[17];

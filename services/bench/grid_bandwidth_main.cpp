@@ -55,9 +55,8 @@ Totals Measure(const std::filesystem::path& entity_dir, std::string* entity_id) 
   grid::OccupancyGrid whole(defaults.local_grid.grid);
   const bench::ChainRun run = bench::RunEntityChain(
       entity_dir, 1e9,
-      [&](const sensors::SensorRecord& record, const pipeline::ScanStep& step,
-          const pipeline::EntityPipeline& chain) {
-        const auto& scan = std::get<sensors::LaserScan>(record);
+      [&](const pipeline::ScanStep& step, const pipeline::EntityPipeline& chain) {
+        const sensors::LaserScan& scan = step.scan;
         const geometry::Pose2& pose = step.world_from_body;
         if (!window) window.emplace(defaults.local_grid, Eigen::Vector2d(pose.x_m, pose.y_m));
         whole.Insert(scan, pose);

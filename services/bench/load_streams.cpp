@@ -73,8 +73,10 @@ ChainRun RunEntityChain(const std::filesystem::path& entity_dir, double duration
     }
     if (!record || sensors::StampOf(*record) - run.first_stamp_s > duration_s) break;
     run.last_stamp_s = std::max(run.last_stamp_s, sensors::StampOf(*record));
-    if (const std::optional<pipeline::ScanStep> step = chain.Add(*record)) on_step(*record, *step, chain);
+    for (const pipeline::ScanStep& step : chain.Add(*record)) on_step(step, chain);
   }
+  chain.EndOfInput();  // what the stride spreading still holds
+  while (const std::optional<pipeline::ScanStep> step = chain.Next()) on_step(*step, chain);
   return run;
 }
 
@@ -84,8 +86,7 @@ SourceStream ComputeSourceStream(const std::filesystem::path& entity_dir, double
   double first_s = -1.0;
   const ChainRun run = RunEntityChain(
       entity_dir, duration_s,
-      [&](const sensors::SensorRecord& record, const pipeline::ScanStep& step,
-          const pipeline::EntityPipeline& chain) {
+      [&](const pipeline::ScanStep& step, const pipeline::EntityPipeline& chain) {
         if (first_s < 0.0) first_s = step.odometry.stamp_s;
         ScanSamples samples;
         samples.offset_s = step.odometry.stamp_s - first_s;
@@ -93,7 +94,7 @@ SourceStream ComputeSourceStream(const std::filesystem::path& entity_dir, double
         samples.pose = ToDdsPose(step, chain.entity_id(), ++pose_seq, version, 0);
         if (step.odometry.reference_changed) {
           samples.reference_scan =
-              ToDdsReferenceScan(std::get<sensors::LaserScan>(record), step, chain.entity_id(),
+              ToDdsReferenceScan(step.scan, step, chain.entity_id(),
                                  ++scan_seq, version, kRangeQuantumM);
           ++stream.reference_scans;
         }

@@ -35,10 +35,9 @@ struct SourceStream {
   long deltas = 0;
 };
 
-// One scan of the chain: the record (a laser scan), its step and the chain after it.
-using StepCallback = std::function<void(const sensors::SensorRecord& record,
-                                        const pipeline::ScanStep& step,
-                                        const pipeline::EntityPipeline& chain)>;
+// One scan of the chain: its step (with the scan) and the chain after it.
+using StepCallback =
+    std::function<void(const pipeline::ScanStep& step, const pipeline::EntityPipeline& chain)>;
 
 // What RunEntityChain saw of the log.
 struct ChainRun {

@@ -124,10 +124,6 @@ void EntityService::ReadAhead() {
   pipeline_.emplace(options_.pipeline, kind_, entity_id_, StartFrame(start.world_from_body),
                     sensors::StampOf(read_ahead_.front()));
   summary_.entity_id = entity_id_;
-  const dead_reckoning::HumanDeadReckoningOptions& walking = options_.pipeline.odometry.dead_reckoning;
-  if (kind_ == sensors::EntityKind::kHuman && walking.stride_interpolation.enabled) {
-    spread_.emplace(dead_reckoning::SpreadOptionsOf(walking));
-  }
   if (!options_.plan.empty()) LoadPlan();
   spdlog::info("{}: {} ({}), {} log, start pose from {} ({:.3f}, {:.3f}, {:.3f})", entity_id_,
                options_.input.string(), sensors::ToString(kind_), description.format,
@@ -203,13 +199,12 @@ EntityRunSummary EntityService::Run() {
     HeartbeatIfDue();
   }
   if (live_source_) live_source_->SetWaitHook({});
-  if (spread_) {
-    // What is still held was accepted: it goes through, stop or not.
-    spread_->Finish();
-    while (std::optional<sensors::SensorRecord> held = spread_->Pop()) Feed(*held);
+  // What the stride spreading still holds was accepted: it goes through, stop or not.
+  pipeline_->EndOfInput();
+  while (std::optional<pipeline::ScanStep> step = pipeline_->Next()) Publish(*step);
+  if (const auto spread = pipeline_->stride_spreading()) {
     spdlog::info("{}: {} strides spread over {} scans, {} records released by the hold",
-                 entity_id_, spread_->counts().strides_spread, spread_->counts().pieces,
-                 spread_->counts().released_unspread);
+                 entity_id_, spread->strides_spread, spread->pieces, spread->released_unspread);
   }
   summary_.interrupted = StopRequested();
   Finish();
@@ -241,42 +236,41 @@ void EntityService::Take(const sensors::SensorRecord& record) {
       spdlog::warn("{}: record {} not recorded: {}", entity_id_, summary_.records, error.what());
     }
   }
-  if (!spread_) return Feed(record);
-  spread_->Push(record);
-  while (std::optional<sensors::SensorRecord> ready = spread_->Pop()) Feed(*ready);
+  // One step at a time: what the inbox brings while a step is published (lockstep answers) acts
+  // on the next scan.
+  pipeline_->Push(record);
+  while (std::optional<pipeline::ScanStep> step = pipeline_->Next()) Publish(*step);
 }
 
-void EntityService::Feed(const sensors::SensorRecord& record) {
-  std::optional<pipeline::ScanStep> step = pipeline_->Add(record);
-  if (!step) return;
-  if (options_.start_unknown) ToPlacedFrame(*step);
-  last_stamp_s_ = step->odometry.stamp_s;
-  last_world_from_body_ = step->world_from_body;
-  last_covariance_ = step->covariance;
-  trajectory_.push_back({last_stamp_s_, step->world_from_body});
-  if (step->plan_round) LogPlanShifts();
+void EntityService::Publish(pipeline::ScanStep& step) {
+  if (options_.start_unknown) ToPlacedFrame(step);
+  last_stamp_s_ = step.odometry.stamp_s;
+  last_world_from_body_ = step.world_from_body;
+  last_covariance_ = step.covariance;
+  trajectory_.push_back({last_stamp_s_, step.world_from_body});
+  if (step.plan_round) LogPlanShifts();
   // The scan's map change, then its reference scan, then its pose: each carries what came
   // before it on the other topics (versions, reference scans sent), so a lockstep fusion
   // (services/fusion/lockstep_order.hpp) can put the topics back in this order.
-  if (step->map_delta) PublishDelta(*step->map_delta, last_stamp_s_);
+  if (step.map_delta) PublishDelta(*step.map_delta, last_stamp_s_);
   const std::uint64_t map_version = pipeline_->local_map().version();
-  if (step->odometry.reference_changed) {
+  if (step.odometry.reference_changed) {
     pena_dds::ReferenceScan scan =
-        ToDdsReferenceScan(std::get<sensors::LaserScan>(record), *step, entity_id_, ++scan_seq_,
+        ToDdsReferenceScan(step.scan, step, entity_id_, ++scan_seq_,
                            map_version, options_.range_quantum_m);
     Send(scan_writer_, scan);
-    gate_.Remember(scan_seq_, step->world_from_body, step->covariance);
+    gate_.Remember(scan_seq_, step.world_from_body, step.covariance);
     ++summary_.reference_scans_sent;
   }
   pena_dds::EntityPose pose =
-      ToDdsPose(*step, entity_id_, ++pose_seq_, map_version, correction_seq_);
+      ToDdsPose(step, entity_id_, ++pose_seq_, map_version, correction_seq_);
   pose.reference_scans_sent(scan_seq_);
   Send(pose_writer_, pose);
   ++summary_.poses_sent;
   // The same rule as the fusion's in lockstep: the scans it attempts are the ones waited for.
-  if (step->odometry.reference_changed && options_.await_corrections_s > 0.0 &&
-      step->odometry.stamp_s - last_awaited_stamp_s_ >= options_.await_corrections_s) {
-    last_awaited_stamp_s_ = step->odometry.stamp_s;
+  if (step.odometry.reference_changed && options_.await_corrections_s > 0.0 &&
+      step.odometry.stamp_s - last_awaited_stamp_s_ >= options_.await_corrections_s) {
+    last_awaited_stamp_s_ = step.odometry.stamp_s;
     AwaitAnswer(scan_seq_);
   }
 }

@@ -18,7 +18,6 @@
 #include "dds_participant.hpp"
 #include "entity_options.hpp"
 #include "live_sensor_source.hpp"
-#include "pena/dead_reckoning/stride_interpolator.hpp"
 #include "pena/geometry/trajectory.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/pipeline/entity_pipeline.hpp"
@@ -84,10 +83,10 @@ class EntityService {
   void Handle(const pena_dds::GlobalMapDelta& sample);
   void Handle(const pena_dds::GlobalMapSnapshot& sample);
   void Handle(const pena_dds::SyncRequest& sample);
-  // A record read from the input: recorded (--record), then through the stride spreading (a
-  // person's) to Feed.
+  // A record read from the input: recorded (--record), then to the pipeline; Publish sends what
+  // each scan step produced.
   void Take(const sensors::SensorRecord& record);
-  void Feed(const sensors::SensorRecord& record);
+  void Publish(pipeline::ScanStep& step);
   // --await-corrections: waits (handling the inbox) until the fusion answered reference scan
   // `seq` or the timeout passed; the wait is added to the pacing.
   void AwaitAnswer(std::uint64_t seq);
@@ -121,9 +120,6 @@ class EntityService {
   sensors::EntityKind kind_ = sensors::EntityKind::kRobot;
   std::string entity_id_;
   std::optional<pipeline::EntityPipeline> pipeline_;
-  // A person's strides spread over the scans inside them, as the offline tools do
-  // (docs/dead-reckoning.md): records wait for the report that ends their stride.
-  std::optional<dead_reckoning::StrideInterpolator> spread_;
   std::optional<Recorder> recorder_;
   geometry::Trajectory trajectory_;
   EntityRunSummary summary_;

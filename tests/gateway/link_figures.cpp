@@ -6,7 +6,7 @@
 #include "link_pair.hpp"
 #include "pena/gateway/compression.hpp"
 #include "pena/gateway/link_codec.hpp"
-#include "pena/gateway/map_packing.hpp"
+#include "pena/line_map/map_packing.hpp"
 #include "pena/gateway/synthetic_team.hpp"
 #include "pena/io/line_map_codec.hpp"
 
@@ -41,7 +41,7 @@ void SegmentFigures() {
     ++deltas;
     segments += delta.added.size() + delta.changed.size();
     removed += delta.removed.size();
-    const std::string bytes = PackDelta(delta);
+    const std::string bytes = line_map::PackDelta(delta);
     packed += bytes.size();
     proto += io::EncodeDelta(delta).size();
     deflated += std::min(bytes.size(), Deflate(bytes).size());

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <opencv2/imgproc.hpp>
 
-#include "extract_steps.hpp"
+#include "pena/line_map/internal/extract_steps.hpp"
 #include "pena/line_map/line_extractor.hpp"
 #include "synthetic_grid.hpp"
 

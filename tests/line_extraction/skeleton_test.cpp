@@ -1,4 +1,4 @@
-#include "skeleton.hpp"
+#include "pena/line_map/internal/skeleton.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The plan's free wall ends as references (PlanAdaptation::ErrorAtEnds and the internal
 // FreeEnds): a corridor with a door, scanned by ray casting the true walls.
-#include "../../libpena/src/localisation/plan_ends.hpp"
+#include "pena/localisation/internal/plan_ends.hpp"
 
 #include <gtest/gtest.h>
 

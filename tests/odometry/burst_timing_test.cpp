@@ -1,5 +1,5 @@
 // Timing quality of a log: scans arriving in bursts (odometry::internal::BurstTiming).
-#include "../../libpena/src/odometry/burst_timing.hpp"
+#include "pena/odometry/internal/burst_timing.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // A wheel-odometry match as an observation of the odometry's prediction (odometry::internal
 // innovation.hpp): its NEES under the odometry's noise model plus the match's covariance.
-#include "../../libpena/src/odometry/innovation.hpp"
+#include "pena/odometry/internal/innovation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include <numbers>
 #include <optional>
 
-#include "../../libpena/src/odometry/interlace_evidence.hpp"
+#include "pena/odometry/internal/interlace_evidence.hpp"
 
 namespace pena::odometry::internal {
 namespace {

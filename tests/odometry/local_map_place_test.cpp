@@ -1,7 +1,7 @@
 // The place choice of the reference (odometry::internal::LocalMap with PlaceChoice): keyframes
 // are picked from a short pool by where they were taken, not only by how recent they are, so
 // that an entity turning back on the spot matches the keyframe it made facing that way before.
-#include "../../libpena/src/odometry/local_map.hpp"
+#include "pena/odometry/internal/local_map.hpp"
 
 #include <gtest/gtest.h>
 

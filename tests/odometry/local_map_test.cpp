@@ -1,7 +1,7 @@
 // The reference of the laser odometry (odometry::internal::LocalMap) with the confirmation of
 // points: floor and ceiling hits of a tilting body-worn laser move with the person (paper Fig. 2b),
 // so a point enters the reference only where another keyframe saw something too.
-#include "../../libpena/src/odometry/local_map.hpp"
+#include "pena/odometry/internal/local_map.hpp"
 
 #include <gtest/gtest.h>
 

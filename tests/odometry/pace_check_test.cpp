@@ -1,7 +1,7 @@
 // The pace check (odometry::internal::PaceCheck): a position that falls behind the dead
 // reckoning's progress over the last few metres walked, by more than the tolerance and more
 // than the prior, is flagged with the direction walked; ahead, or too short or bent a walk, is not.
-#include "../../libpena/src/odometry/pace_check.hpp"
+#include "pena/odometry/internal/pace_check.hpp"
 
 #include <gtest/gtest.h>
 

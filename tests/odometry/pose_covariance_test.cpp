@@ -1,6 +1,6 @@
 // The pieces of the laser odometry's pose covariance (odometry::internal, pose_covariance.hpp):
 // exact values on small cases.
-#include "../../libpena/src/odometry/pose_covariance.hpp"
+#include "pena/odometry/internal/pose_covariance.hpp"
 
 #include <gtest/gtest.h>
 

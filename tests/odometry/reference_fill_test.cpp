@@ -1,5 +1,5 @@
 // Densifying a keyframe along its walls (odometry::internal::FillReference).
-#include "../../libpena/src/odometry/reference_fill.hpp"
+#include "pena/odometry/internal/reference_fill.hpp"
 
 #include <gtest/gtest.h>
 

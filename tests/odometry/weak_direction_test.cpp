@@ -2,7 +2,7 @@
 // match keeps the prior along its weak direction; a weakly constrained one only when it slid back
 // against the walk, away from a prior that agrees with it across the weak direction and that the
 // latest constraining match confirmed.
-#include "../../libpena/src/odometry/weak_direction.hpp"
+#include "pena/odometry/internal/weak_direction.hpp"
 
 #include <gtest/gtest.h>
 

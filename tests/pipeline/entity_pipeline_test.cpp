@@ -40,6 +40,17 @@ const sim::EntityRecording& Robot() {
   return result.entities.front();
 }
 
+// The same floor walked by a firefighter (gyro, compass and stride reports).
+const sim::EntityRecording& Walker() {
+  static const sim::SimulationResult result = [] {
+    std::string text = kScenario;
+    text = text.substr(0, text.find("entity robot1")) +
+           "entity ff1 human 2 2 0 speed=0.9\nwaypoint ff1 20 2\nwaypoint ff1 20 1.5\n";
+    return sim::Simulator{sim::SimulationOptions{}}.Run(sim::ParseScenario(text, "test:walker"));
+  }();
+  return result.entities.front();
+}
+
 struct Replayed {
   std::vector<ScanStep> steps;
   std::vector<line_map::MapDelta> deltas;
@@ -47,15 +58,26 @@ struct Replayed {
 
 Replayed Replay(EntityPipeline& pipeline, const sim::EntityRecording& entity) {
   Replayed run;
+  const auto take = [&](ScanStep& step) {
+    if (step.map_delta) run.deltas.push_back(*step.map_delta);
+    run.steps.push_back(std::move(step));
+  };
   for (const sensors::SensorRecord& record : entity.records) {
-    if (auto step = pipeline.Add(record)) {
-      if (step->map_delta) run.deltas.push_back(*step->map_delta);
-      run.steps.push_back(std::move(*step));
-    }
+    for (ScanStep& step : pipeline.Add(record)) take(step);
   }
+  pipeline.EndOfInput();
+  while (std::optional<ScanStep> step = pipeline.Next()) take(*step);
   line_map::MapDelta last = pipeline.Flush();
   if (!last.empty()) run.deltas.push_back(std::move(last));
   return run;
+}
+
+// The step of one of a robot's records: nothing is held for a robot, so at most one.
+std::optional<ScanStep> AddRecord(EntityPipeline& pipeline, const sensors::SensorRecord& record) {
+  std::vector<ScanStep> steps = pipeline.Add(record);
+  EXPECT_LE(steps.size(), 1u);
+  if (steps.empty()) return std::nullopt;
+  return std::move(steps.front());
 }
 
 EntityPipeline MakePipeline(const sim::EntityRecording& entity,
@@ -96,7 +118,7 @@ TEST(EntityPipeline, MapFromOdomCorrectionMovesThePose) {
   const sim::EntityRecording& robot = Robot();
   EntityPipeline pipeline = MakePipeline(robot);
   std::optional<ScanStep> first;
-  for (std::size_t i = 0; i < robot.records.size() && !first; ++i) first = pipeline.Add(robot.records[i]);
+  for (std::size_t i = 0; i < robot.records.size() && !first; ++i) first = AddRecord(pipeline, robot.records[i]);
   ASSERT_TRUE(first.has_value());
   Correction correction;
   correction.map_from_odom = {1.0, -0.5, 0.0};
@@ -106,9 +128,9 @@ TEST(EntityPipeline, MapFromOdomCorrectionMovesThePose) {
   for (std::size_t i = 0; i < robot.records.size() && !next; ++i) {
     if (std::holds_alternative<sensors::LaserScan>(robot.records[i]) &&
         sensors::StampOf(robot.records[i]) > first->odometry.stamp_s) {
-      next = pipeline.Add(robot.records[i]);
+      next = AddRecord(pipeline, robot.records[i]);
     } else if (sensors::StampOf(robot.records[i]) > first->odometry.stamp_s) {
-      pipeline.Add(robot.records[i]);
+      AddRecord(pipeline, robot.records[i]);
     }
   }
   ASSERT_TRUE(next.has_value());
@@ -122,7 +144,7 @@ TEST(EntityPipeline, PublishedCovarianceIsTheOdometrysInTheMapFrame) {
   EntityPipeline pipeline = MakePipeline(robot);
   std::size_t i = 0;
   std::optional<ScanStep> first;
-  for (; i < robot.records.size() && !first; ++i) first = pipeline.Add(robot.records[i]);
+  for (; i < robot.records.size() && !first; ++i) first = AddRecord(pipeline, robot.records[i]);
   ASSERT_TRUE(first.has_value());
   EXPECT_TRUE(first->covariance.isZero());  // the start defines the frame
   Correction correction;
@@ -131,7 +153,7 @@ TEST(EntityPipeline, PublishedCovarianceIsTheOdometrysInTheMapFrame) {
   ASSERT_EQ(pipeline.ApplyCorrection(correction).status, CorrectionStatus::kApplied);
   std::optional<ScanStep> last;
   for (; i < robot.records.size(); ++i) {
-    if (auto step = pipeline.Add(robot.records[i])) last = std::move(step);
+    if (auto step = AddRecord(pipeline, robot.records[i])) last = std::move(step);
   }
   ASSERT_TRUE(last.has_value());
   const Eigen::Matrix3d& odom = last->odometry.covariance;
@@ -151,7 +173,7 @@ TEST(EntityPipeline, PoseCorrectionAtAPastStampSolvesMapFromOdom) {
   EntityPipeline pipeline = MakePipeline(robot);
   std::vector<ScanStep> steps;
   for (const auto& record : robot.records) {
-    if (auto step = pipeline.Add(record)) steps.push_back(*step);
+    if (auto step = AddRecord(pipeline, record)) steps.push_back(*step);
     if (steps.size() == 20) break;
   }
   ASSERT_EQ(steps.size(), 20u);
@@ -188,7 +210,7 @@ TEST(EntityPipeline, LargeCorrectionKeepsTheOldGridsLinesAndStartsAFreshGrid) {
   EntityPipeline pipeline = MakePipeline(robot);
   int scans = 0;
   for (const auto& record : robot.records) {
-    if (pipeline.Add(record) && ++scans == 12) break;
+    if (AddRecord(pipeline, record) && ++scans == 12) break;
   }
   Correction correction;
   correction.map_from_odom = {0.0, 0.5, 0.0};
@@ -240,6 +262,59 @@ TEST(StartPose, NativeLogsStartAtTheirGroundTruth) {
   }
   EXPECT_EQ(StartPoseOf(ahead, true).source, "ground truth");
   EXPECT_NE(StartPoseOf(ahead, false).source, "ground truth");
+}
+
+// The poses do not depend on the line map: an odometry-only run (`pena odometry`) gives the
+// poses pena-entity publishes.
+TEST(EntityPipeline, WithoutTheLineMapGivesTheSamePosesAndNoDeltas) {
+  const sim::EntityRecording& robot = Robot();
+  EntityPipeline full = MakePipeline(robot);
+  const Replayed with_map = Replay(full, robot);
+  EntityPipelineOptions poses_only;
+  poses_only.build_line_map = false;
+  EntityPipeline bare = MakePipeline(robot, poses_only);
+  const Replayed without_map = Replay(bare, robot);
+  ASSERT_EQ(without_map.steps.size(), with_map.steps.size());
+  for (std::size_t i = 0; i < with_map.steps.size(); ++i) {
+    const geometry::Pose2& a = with_map.steps[i].world_from_body;
+    const geometry::Pose2& b = without_map.steps[i].world_from_body;
+    ASSERT_EQ(a.x_m, b.x_m) << "scan " << i;
+    ASSERT_EQ(a.y_m, b.y_m) << "scan " << i;
+    ASSERT_EQ(a.theta_rad, b.theta_rad) << "scan " << i;
+  }
+  EXPECT_FALSE(with_map.deltas.empty());
+  EXPECT_TRUE(without_map.deltas.empty());
+  EXPECT_EQ(bare.local_map().size(), 0u);
+}
+
+// A person's strides are spread over the scans inside them by the pipeline itself, on by
+// default: a library user gets what `pena odometry` and pena-entity run. Every scan comes out
+// once the input ends; a robot's records are not held.
+TEST(EntityPipeline, SpreadsAPersonsStridesOverTheirScansByDefault) {
+  const sim::EntityRecording& walker = Walker();
+  EntityPipeline spreading = MakePipeline(walker);
+  const Replayed spread = Replay(spreading, walker);
+  ASSERT_TRUE(spreading.stride_spreading().has_value());
+  EXPECT_GT(spreading.stride_spreading()->strides_spread, 10u);
+  EXPECT_GT(spreading.stride_spreading()->pieces, spreading.stride_spreading()->strides_spread);
+  EXPECT_EQ(spread.steps.size(), walker.scans);
+
+  EntityPipelineOptions off;
+  off.odometry.dead_reckoning.stride_interpolation.enabled = false;
+  EntityPipeline whole_strides = MakePipeline(walker, off);
+  const Replayed whole = Replay(whole_strides, walker);
+  EXPECT_FALSE(whole_strides.stride_spreading().has_value());
+  ASSERT_EQ(whole.steps.size(), walker.scans);
+  // Between reports the spread prediction moves: the odometry's priors differ.
+  double largest_m = 0.0;
+  for (std::size_t i = 0; i < whole.steps.size(); ++i) {
+    const geometry::Pose2& a = spread.steps[i].odometry.world_from_prior;
+    const geometry::Pose2& b = whole.steps[i].odometry.world_from_prior;
+    largest_m = std::max(largest_m, std::hypot(a.x_m - b.x_m, a.y_m - b.y_m));
+  }
+  EXPECT_GT(largest_m, 0.05);
+
+  EXPECT_FALSE(MakePipeline(Robot()).stride_spreading().has_value());
 }
 
 }  // namespace

@@ -59,14 +59,17 @@ Errors Replay(bool with_plan) {
   if (with_plan) pipeline.SetPlan(Plan());
   double published = 0.0, odometry = 0.0;
   std::size_t scan = 0;
-  for (const sensors::SensorRecord& record : ff1.records) {
-    const std::optional<ScanStep> step = pipeline.Add(record);
-    if (!step) continue;
-    EXPECT_NEAR(step->odometry.stamp_s, ff1.truth[scan].stamp_s, 1e-6);
+  const auto score = [&](const ScanStep& step) {
+    EXPECT_NEAR(step.odometry.stamp_s, ff1.truth[scan].stamp_s, 1e-6);
     const geometry::Pose2& truth = ff1.truth[scan++].world_from_body;
-    published += SquaredDistance(step->world_from_body, truth);
-    odometry += SquaredDistance(step->odometry.world_from_body, truth);
+    published += SquaredDistance(step.world_from_body, truth);
+    odometry += SquaredDistance(step.odometry.world_from_body, truth);
+  };
+  for (const sensors::SensorRecord& record : ff1.records) {
+    for (const ScanStep& step : pipeline.Add(record)) score(step);
   }
+  pipeline.EndOfInput();
+  while (const std::optional<ScanStep> step = pipeline.Next()) score(*step);
   EXPECT_EQ(scan, ff1.scans);
   return {std::sqrt(published / static_cast<double>(scan)),
           std::sqrt(odometry / static_cast<double>(scan)), pipeline.counts()};

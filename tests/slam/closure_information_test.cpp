@@ -1,7 +1,7 @@
 // How far a loop closure is trusted each way (slam::internal::ClosureInformation): a corridor
 // closure holds across the corridor and lets the along position go, in the pose graph's own edge
 // frame, whatever the two keyframes' headings.
-#include "../../libpena/src/slam/edge_information.hpp"
+#include "pena/slam/internal/edge_information.hpp"
 
 #include <gtest/gtest.h>
 

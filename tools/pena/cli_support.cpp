@@ -78,16 +78,7 @@ void ProgressLine::Show(double wall_s, const std::string& text) {
 
 StartPose StartPoseOf(const std::vector<sensors::SensorRecord>& read_ahead,
                       const io::LogSource& source) {
-  for (const sensors::SensorRecord& record : read_ahead) {
-    if (const auto* truth = std::get_if<sensors::GroundTruth>(&record)) {
-      if (source.description().format == "pena-log") return {truth->world_from_body, "ground truth"};
-    }
-    if (const auto* scan = std::get_if<sensors::LaserScan>(&record)) {
-      if (scan->odometry_pose) return {*scan->odometry_pose, "odometry"};
-      break;
-    }
-  }
-  return {{}, "identity"};
+  return pipeline::StartPoseOf(read_ahead, source.description().format == "pena-log");
 }
 
 }  // namespace pena::cli

@@ -9,6 +9,7 @@
 
 #include "pena/geometry/pose2.hpp"
 #include "pena/io/log_source.hpp"
+#include "pena/pipeline/start_pose.hpp"
 #include "pena/sensors/record.hpp"
 
 namespace pena::cli {
@@ -61,13 +62,9 @@ class ProgressLine {
   double last_wall_s_ = 0.0;
 };
 
-// Where a run over a log starts when the user gave no start: a native log's ground truth if it
-// comes before the first scan (the mission's known start; truth is used for nothing else), else
-// the first scan's odometry pose, else the identity. `read_ahead` holds the log's first records.
-struct StartPose {
-  geometry::Pose2 world_from_body;
-  std::string source;  // "ground truth", "odometry", "identity"
-};
+// Where a run over a log starts when the user gave no start: pipeline::StartPoseOf, the rule
+// pena-entity follows, for `source`'s format. `read_ahead` holds the log's first records.
+using pipeline::StartPose;
 StartPose StartPoseOf(const std::vector<sensors::SensorRecord>& read_ahead,
                       const io::LogSource& source);
 

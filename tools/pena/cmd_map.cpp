@@ -15,13 +15,12 @@
 
 #include "cli_support.hpp"
 #include "cmd_map.hpp"
-#include "spread_source.hpp"
 #include "commands.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/ros_map.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/line_map/line_extractor.hpp"
-#include "pena/odometry/laser_odometry.hpp"
+#include "pena/pipeline/entity_pipeline.hpp"
 
 namespace pena::cli {
 namespace map {
@@ -88,51 +87,66 @@ class PoseFeeder {
                                   Fixed(wall_s, 1) + " s");
       }
     }
+    if (chain_) {
+      chain_->EndOfInput();  // the records the stride spreading still holds
+      while (const std::optional<pipeline::ScanStep> step = chain_->Next()) PlaceStep(*step);
+      // Scans the odometry gave no pose.
+      run_.skipped_no_pose += run_.scans - placed_;
+    }
     run_.wall_s = SecondsSince(started);
   }
 
  private:
+  // The odometry's poses come from the entity's chain, as `pena odometry` runs it.
   void StartChain(const std::vector<sensors::SensorRecord>& read_ahead) {
     const double stamp_s = read_ahead.empty() ? 0.0 : sensors::StampOf(read_ahead.front());
-    const sensors::EntityKind kind =
-        source_.description().kind.value_or(sensors::EntityKind::kRobot);
-    chain_.emplace(OdometryOptionsOf(args_), kind, StartPoseOf(read_ahead, source_).world_from_body,
-                   stamp_s);
+    const io::LogDescription& description = source_.description();
+    chain_.emplace(ChainOptionsOf(args_), description.kind.value_or(sensors::EntityKind::kRobot),
+                   description.entity_id.empty() ? "entity" : description.entity_id,
+                   StartPoseOf(read_ahead, source_).world_from_body, stamp_s);
   }
 
-  // The laser sits at the body origin, so world_from_laser is the body pose.
   void Feed(const sensors::SensorRecord& record) {
-    std::optional<geometry::Pose2> pose;
-    if (chain_) {
-      if (const auto estimate = chain_->Add(record)) pose = estimate->world_from_body;
-    }
     const auto* scan = std::get_if<sensors::LaserScan>(&record);
-    if (scan == nullptr) return;
-    ++run_.scans;
-    if (!trajectory_.empty()) {
-      pose = PoseAt(trajectory_, scan->stamp_s);
-    } else if (!chain_) {
-      pose = scan->logged_pose;
+    if (scan != nullptr) ++run_.scans;
+    if (chain_) {
+      chain_->Push(record);
+      while (const std::optional<pipeline::ScanStep> step = chain_->Next()) PlaceStep(*step);
+      return;
     }
+    if (scan == nullptr) return;
+    const std::optional<geometry::Pose2> pose =
+        trajectory_.empty() ? scan->logged_pose : PoseAt(trajectory_, scan->stamp_s);
     if (!pose) {
       ++run_.skipped_no_pose;
       return;
     }
+    Place(*scan, *pose);
+  }
+
+  void PlaceStep(const pipeline::ScanStep& step) {
+    ++placed_;
+    Place(step.scan, step.odometry.world_from_body);
+  }
+
+  // The laser sits at the body origin, so world_from_laser is the body pose.
+  void Place(const sensors::LaserScan& original, const geometry::Pose2& pose) {
+    const sensors::LaserScan* scan = &original;
     std::optional<sensors::LaserScan> level;
     if (run_.reference && run_.leveller) {
-      if (const auto floor = run_.leveller->FloorLineOf(*run_.reference, *scan, *pose)) {
+      if (const auto floor = run_.leveller->FloorLineOf(*run_.reference, *scan, pose)) {
         ++run_.bent_scans;
         if (args_.bent_scans == "drop") return;
         level = run_.leveller->Level(*scan, *floor);
         scan = &*level;
       }
     }
-    if (run_.grid.Insert(*scan, *pose)) {
+    if (run_.grid.Insert(*scan, pose)) {
       ++run_.used;
     } else {
       ++run_.refused;
     }
-    if (args_.online) FeedLocal(*scan, *pose);
+    if (args_.online) FeedLocal(*scan, pose);
   }
 
   // The paper's online mode: the local grid is segmented into lines when the entity nears its
@@ -155,7 +169,8 @@ class PoseFeeder {
   const geometry::Trajectory& trajectory_;
   io::LogSource& source_;
   MapRun& run_;
-  std::optional<odometry::LaserOdometry> chain_;
+  std::optional<pipeline::EntityPipeline> chain_;
+  long placed_ = 0;  // scans the chain gave a pose
 };
 
 void RunMap(const MapArgs& args) {
@@ -176,8 +191,7 @@ void RunMap(const MapArgs& args) {
   } else if (args.slam) {
     if (auto slam_poses = RunSlamPass(args, run)) trajectory = std::move(*slam_poses);
   }
-  const std::unique_ptr<io::LogSource> source =
-      OpenChainLog(args.log, args.read, OdometryOptionsOf(args).dead_reckoning);
+  const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
   if (!source->description().entity_id.empty()) run.source = source->description().entity_id;
   PoseFeeder(args, trajectory, *source, run).Run();
   if (args.bent_scans != "off" && run.used > 0) {
@@ -189,8 +203,7 @@ void RunMap(const MapArgs& args) {
     run.local.reset();
     run.map = line_map::LineMap(map_options);
     run.extractions = 0;
-    const std::unique_ptr<io::LogSource> again =
-        OpenChainLog(args.log, args.read, OdometryOptionsOf(args).dead_reckoning);
+    const std::unique_ptr<io::LogSource> again = io::OpenLog(args.log, args.read);
     PoseFeeder(args, trajectory, *again, run).Run();
   }
   if (run.used == 0) throw std::runtime_error(args.log + ": no scan could be placed in the grid");

@@ -17,6 +17,7 @@
 #include "pena/line_map/line_map.hpp"
 #include "pena/line_map/line_segment.hpp"
 #include "pena/odometry/laser_odometry.hpp"
+#include "pena/pipeline/entity_pipeline.hpp"
 #include "pena/slam/keyframe_slam.hpp"
 
 namespace pena::cli::map {
@@ -40,6 +41,8 @@ struct MapArgs {
 
 // The odometry options of the chain that gives the poses (defaults changed by --set).
 odometry::LaserOdometryOptions OdometryOptionsOf(const MapArgs& args);
+// The entity's chain that gives the poses: those odometry options, without its line map.
+pipeline::EntityPipelineOptions ChainOptionsOf(const MapArgs& args);
 // The SLAM's options for a log of entities of `kind` (--set slam.NAME=VALUE applied, validated);
 // throws std::runtime_error or std::invalid_argument naming a bad setting.
 slam::SlamOptions SlamOptionsOf(const MapArgs& args, sensors::EntityKind kind);

@@ -7,7 +7,7 @@
 
 #include "cli_support.hpp"
 #include "cmd_map.hpp"
-#include "pena/gateway/map_packing.hpp"
+#include "pena/line_map/map_packing.hpp"
 #include "pena/io/dxf_writer.hpp"
 #include "pena/io/line_csv.hpp"
 #include "pena/io/line_map_codec.hpp"
@@ -109,7 +109,7 @@ MapBytes MeasureBytes(const std::filesystem::path& out_dir, const line_map::Line
                       const grid::GridImage& image) {
   const line_map::MapSnapshot snapshot = map.Snapshot();
   return {std::filesystem::file_size(out_dir / "lines.csv"), io::EncodeSnapshot(snapshot).size(),
-          gateway::PackSnapshot(snapshot).size(), PngBytes(image.occupancy)};
+          line_map::PackSnapshot(snapshot).size(), PngBytes(image.occupancy)};
 }
 
 void PrintSummary(const MapRun& run, const grid::GridImage& image,

@@ -1,5 +1,6 @@
 // pena map: the SLAM pass. Without a trajectory and without logged poses, the log is read once
-// through the laser odometry chain (as `pena odometry` runs it, from the same start pose) and a
+// through the entity's chain (pipeline::EntityPipeline, as `pena odometry` runs it, from the same
+// start pose) and a
 // keyframe SLAM (libpena slam, docs/slam.md) that closes loops; the map is then drawn from the
 // SLAM's poses in a second pass. DIR/trajectory.tum holds those poses, DIR/closures.csv the
 // loop-closure matches that reached the graph.
@@ -13,9 +14,9 @@
 #include "cli_support.hpp"
 #include "cmd_map.hpp"
 #include "odometry_settings.hpp"
-#include "spread_source.hpp"
+#include "pena/io/log_source.hpp"
 #include "pena/io/trajectory_io.hpp"
-#include "pena/odometry/laser_odometry.hpp"
+#include "pena/pipeline/entity_pipeline.hpp"
 
 namespace pena::cli::map {
 
@@ -67,6 +68,13 @@ odometry::LaserOdometryOptions OdometryOptionsOf(const MapArgs& args) {
   return options;
 }
 
+pipeline::EntityPipelineOptions ChainOptionsOf(const MapArgs& args) {
+  pipeline::EntityPipelineOptions options;
+  options.odometry = OdometryOptionsOf(args);
+  options.build_line_map = false;  // pena map draws its own, from the poses
+  return options;
+}
+
 slam::SlamOptions SlamOptionsOf(const MapArgs& args, sensors::EntityKind kind) {
   slam::SlamOptions options;
   // People's odometry heading is held by the compass, so a closure needs no heading correction
@@ -107,8 +115,7 @@ void WriteClosures(const std::filesystem::path& path, const std::vector<slam::Lo
 
 std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run) {
   const auto started = Clock::now();
-  const std::unique_ptr<io::LogSource> source =
-      OpenChainLog(args.log, args.read, OdometryOptionsOf(args).dead_reckoning);
+  const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
   std::vector<sensors::SensorRecord> read_ahead;
   while (auto record = source->Next()) {
     read_ahead.push_back(std::move(*record));
@@ -118,15 +125,16 @@ std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run
     }
   }
   const double stamp_s = read_ahead.empty() ? 0.0 : sensors::StampOf(read_ahead.front());
-  const sensors::EntityKind kind = source->description().kind.value_or(sensors::EntityKind::kRobot);
-  odometry::LaserOdometry chain(OdometryOptionsOf(args), kind,
-                                StartPoseOf(read_ahead, *source).world_from_body, stamp_s);
+  const io::LogDescription& description = source->description();
+  const sensors::EntityKind kind = description.kind.value_or(sensors::EntityKind::kRobot);
+  pipeline::EntityPipeline chain(ChainOptionsOf(args), kind,
+                                 description.entity_id.empty() ? "entity" : description.entity_id,
+                                 StartPoseOf(read_ahead, *source).world_from_body, stamp_s);
   slam::KeyframeSlam slam(SlamOptionsOf(args, kind));
   ProgressLine progress(!args.quiet);
   auto feed = [&](const sensors::SensorRecord& record) {
-    const auto estimate = chain.Add(record);
-    const auto* scan = std::get_if<sensors::LaserScan>(&record);
-    if (estimate && scan != nullptr) slam.Add(*scan, estimate->world_from_body);
+    chain.Push(record);
+    while (const auto step = chain.Next()) slam.Add(step->scan, step->odometry.world_from_body);
   };
   for (const sensors::SensorRecord& record : read_ahead) feed(record);
   while (const auto record = source->Next()) {
@@ -138,6 +146,8 @@ std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run
                                 " closures, " + Fixed(wall_s, 1) + " s");
     }
   }
+  chain.EndOfInput();  // the records the stride spreading still holds
+  while (const auto step = chain.Next()) slam.Add(step->scan, step->odometry.world_from_body);
   slam.Finish();
   geometry::Trajectory trajectory = slam.Trajectory();
   std::filesystem::create_directories(args.out);

@@ -1,6 +1,6 @@
-// pena odometry: runs the per-entity laser odometry (odometry::LaserOdometry) over a CARMEN or
-// native log and writes DIR/trajectory.tum, odometry.csv, odometry.png and summary.json.
-// Options, outputs and formats: docs/odometry.md.
+// pena odometry: runs the per-entity chain (pipeline::EntityPipeline, as pena-entity does, without
+// its line map) over a CARMEN or native log and writes DIR/trajectory.tum, odometry.csv,
+// odometry.png and summary.json. Options, outputs and formats: docs/odometry.md.
 #include <unistd.h>
 
 #include <chrono>
@@ -22,10 +22,10 @@
 #include "cli_support.hpp"
 #include "commands.hpp"
 #include "odometry_settings.hpp"
-#include "spread_source.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/odometry/laser_odometry.hpp"
+#include "pena/pipeline/entity_pipeline.hpp"
 #include "pena/scan_matching/point_set.hpp"
 #include "pena/viz/trajectory_picture.hpp"
 
@@ -124,35 +124,42 @@ struct RunResult {
   double wall_s = 0.0;  // reading the log and running the odometry
 };
 
-void Record(const sensors::SensorRecord& record, odometry::LaserOdometry& chain, RunResult& run) {
+// One scan's estimate into the outputs.
+void Place(const pipeline::ScanStep& step, RunResult& run) {
+  const odometry::OdometryEstimate& estimate = step.odometry;
+  const geometry::Pose2& pose = estimate.world_from_body;
+  run.picture.scans_m.push_back(
+      scan_matching::TransformPoints(pose, scan_matching::ScanToPoints(step.scan, 0.0)));
+  run.picture.estimate.push_back({estimate.stamp_s, pose});
+  if (estimate.reference_changed) run.picture.keyframes_m.emplace_back(pose.x_m, pose.y_m);
+  if (estimate.status == odometry::MatchStatus::kFailed)
+    run.picture.failed_m.emplace_back(pose.x_m, pose.y_m);
+  if (estimate.status == odometry::MatchStatus::kPriorOnly) ++run.prior_only;
+  run.estimates.push_back(estimate);
+}
+
+void Record(const sensors::SensorRecord& record, pipeline::EntityPipeline& chain, RunResult& run) {
   ++run.records;
   run.last_stamp_s = std::max(run.last_stamp_s, sensors::StampOf(record));
-  const std::optional<odometry::OdometryEstimate> estimate = chain.Add(record);
-  if (!estimate) return;
-  const auto* scan = std::get_if<sensors::LaserScan>(&record);
-  const geometry::Pose2& pose = estimate->world_from_body;
-  run.picture.scans_m.push_back(
-      scan ? scan_matching::TransformPoints(pose, scan_matching::ScanToPoints(*scan, 0.0))
-           : std::vector<Eigen::Vector2d>{});
-  run.picture.estimate.push_back({estimate->stamp_s, pose});
-  if (estimate->reference_changed) run.picture.keyframes_m.emplace_back(pose.x_m, pose.y_m);
-  if (estimate->status == odometry::MatchStatus::kFailed)
-    run.picture.failed_m.emplace_back(pose.x_m, pose.y_m);
-  if (estimate->status == odometry::MatchStatus::kPriorOnly) ++run.prior_only;
-  run.estimates.push_back(*estimate);
+  chain.Push(record);
+  while (const std::optional<pipeline::ScanStep> step = chain.Next()) Place(*step, run);
 }
 
 RunResult RunChain(io::LogSource& source, const OdometryArgs& args,
                    const std::optional<geometry::Pose2>& start_override) {
   const auto started = Clock::now();
   Start start = FindStart(source, start_override);
-  odometry::LaserOdometryOptions options;
-  options.motion_prior = kPriors.at(args.prior);
-  options.match_scans = !args.no_matching;
-  options.confirm_reference = kConfirm.at(args.confirm);
-  ApplyOdometrySettings(args.settings, options);
-  const sensors::EntityKind kind = source.description().kind.value_or(sensors::EntityKind::kRobot);
-  odometry::LaserOdometry chain(options, kind, start.world_from_body, start.stamp_s);
+  pipeline::EntityPipelineOptions options;
+  options.odometry.motion_prior = kPriors.at(args.prior);
+  options.odometry.match_scans = !args.no_matching;
+  options.odometry.confirm_reference = kConfirm.at(args.confirm);
+  ApplyOdometrySettings(args.settings, options.odometry);
+  options.build_line_map = false;  // the poses alone
+  const io::LogDescription& description = source.description();
+  const sensors::EntityKind kind = description.kind.value_or(sensors::EntityKind::kRobot);
+  pipeline::EntityPipeline chain(options, kind,
+                                 description.entity_id.empty() ? "entity" : description.entity_id,
+                                 start.world_from_body, start.stamp_s);
   RunResult run;
   run.first_stamp_s = run.last_stamp_s = start.stamp_s;
   run.world_from_start = start.world_from_body;
@@ -170,9 +177,14 @@ RunResult RunChain(io::LogSource& source, const OdometryArgs& args,
                                 Fixed(wall_s > 0.0 ? log_s / wall_s : 0.0, 1) + " x real time");
     }
   }
-  run.counts = chain.counts();
-  if (kind == sensors::EntityKind::kHuman) run.dead_reckoning = chain.dead_reckoning_counts();
-  if (const auto* spreading = StrideSpreadingCounts(source)) run.spreading = *spreading;
+  // The records the stride spreading still holds.
+  chain.EndOfInput();
+  while (const std::optional<pipeline::ScanStep> step = chain.Next()) Place(*step, run);
+  run.counts = chain.odometry_counts();
+  if (kind == sensors::EntityKind::kHuman) {
+    run.dead_reckoning = chain.odometry().dead_reckoning_counts();
+  }
+  run.spreading = chain.stride_spreading();
   run.wall_s = SecondsSince(started);
   return run;
 }
@@ -292,10 +304,7 @@ void RunOdometry(const OdometryArgs& args) {
   const auto started = Clock::now();
   std::optional<geometry::Pose2> start_override;
   if (!args.start.empty()) start_override = ParseStart(args.start);
-  odometry::LaserOdometryOptions read_options;  // for the stream's own options (stride spreading)
-  ApplyOdometrySettings(args.settings, read_options);
-  const std::unique_ptr<io::LogSource> source =
-      OpenChainLog(args.log, args.read, read_options.dead_reckoning);
+  const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
   const std::filesystem::path out_dir(args.out);
   std::filesystem::create_directories(out_dir);
   RunResult run = RunChain(*source, args, start_override);

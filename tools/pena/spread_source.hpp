@@ -1,6 +1,8 @@
 #pragma once
-// The log as the per-entity chain takes it: a person's strides spread over the scans taken
-// during them (dead_reckoning::StrideInterpolator, docs/dead-reckoning.md); other logs as read.
+// The log as `pena localise`'s chain (localisation::LocalisationChain, which has no stride
+// spreading of its own) takes it: a person's strides spread over the scans taken during them
+// (dead_reckoning::StrideInterpolator, docs/dead-reckoning.md); other logs as read. The entity
+// pipeline, which the other subcommands run, spreads them itself.
 
 #include <filesystem>
 #include <memory>

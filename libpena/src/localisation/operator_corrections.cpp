@@ -38,43 +38,4 @@ double FromStamp(const OperatorCorrection& correction) {
   return std::visit([](const auto& c) { return c.from_stamp_s; }, correction);
 }
 
-geometry::Trajectory ApplyCorrection(const geometry::Trajectory& trajectory,
-                                     const OperatorCorrection& correction) {
-  const geometry::Pose2 corrected_from_wrong = CorrectionTransform(correction);
-  const double from_s = FromStamp(correction);
-  geometry::Trajectory out = trajectory;
-  for (geometry::StampedPose2& pose : out) {
-    if (pose.stamp_s >= from_s) pose.pose = geometry::Compose(corrected_from_wrong, pose.pose);
-  }
-  return out;
-}
-
-void OperatorCorrections::Add(const OperatorCorrection& correction) {
-  CorrectionTransform(correction);  // throws for a degenerate rotation before it is stored
-  corrections_.push_back(correction);
-}
-
-bool OperatorCorrections::Undo() {
-  if (corrections_.empty()) return false;
-  corrections_.pop_back();
-  return true;
-}
-
-geometry::Trajectory OperatorCorrections::Apply(const geometry::Trajectory& raw) const {
-  geometry::Trajectory out = raw;
-  for (const OperatorCorrection& correction : corrections_) out = ApplyCorrection(out, correction);
-  return out;
-}
-
-geometry::Pose2 OperatorCorrections::CorrectedFromRaw(double stamp_s) const {
-  // Later corrections act on the output of earlier ones: T = T_n * ... * T_1 (those in force).
-  geometry::Pose2 corrected_from_raw;
-  for (const OperatorCorrection& correction : corrections_) {
-    if (stamp_s >= FromStamp(correction)) {
-      corrected_from_raw = geometry::Compose(CorrectionTransform(correction), corrected_from_raw);
-    }
-  }
-  return corrected_from_raw;
-}
-
 }  // namespace pena::localisation

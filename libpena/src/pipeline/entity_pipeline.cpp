@@ -5,6 +5,8 @@
 #include <utility>
 #include <variant>
 
+#include "pena/dead_reckoning/human_dead_reckoning.hpp"
+
 namespace pena::pipeline {
 namespace {
 
@@ -68,9 +70,55 @@ EntityPipeline::EntityPipeline(const EntityPipelineOptions& options, sensors::En
       global_map_(options.line_map),
       last_world_from_body_(world_from_start) {
   if (entity_id_.empty()) throw std::invalid_argument("pipeline: entity id must not be empty");
+  // The walker's position moves only at stride reports, which come when a stride ends: spread
+  // over the scans inside it, the prediction follows the walker instead of lagging by a stride
+  // (docs/dead-reckoning.md). The odometry's pace and slide checks expect it.
+  const dead_reckoning::HumanDeadReckoningOptions& walking = options_.odometry.dead_reckoning;
+  if (kind == sensors::EntityKind::kHuman && walking.stride_interpolation.enabled) {
+    spread_.emplace(dead_reckoning::SpreadOptionsOf(walking));
+  }
 }
 
-std::optional<ScanStep> EntityPipeline::Add(const sensors::SensorRecord& record) {
+void EntityPipeline::Push(sensors::SensorRecord record) {
+  if (spread_) {
+    spread_->Push(std::move(record));
+  } else {
+    ready_.push_back(std::move(record));
+  }
+}
+
+std::optional<sensors::SensorRecord> EntityPipeline::PopReady() {
+  if (spread_) return spread_->Pop();
+  if (ready_.empty()) return std::nullopt;
+  sensors::SensorRecord record = std::move(ready_.front());
+  ready_.pop_front();
+  return record;
+}
+
+std::optional<ScanStep> EntityPipeline::Next() {
+  while (std::optional<sensors::SensorRecord> record = PopReady()) {
+    if (std::optional<ScanStep> step = Step(*record)) return step;
+  }
+  return std::nullopt;
+}
+
+void EntityPipeline::EndOfInput() {
+  if (spread_) spread_->Finish();
+}
+
+std::vector<ScanStep> EntityPipeline::Add(const sensors::SensorRecord& record) {
+  Push(record);
+  std::vector<ScanStep> steps;
+  while (std::optional<ScanStep> step = Next()) steps.push_back(std::move(*step));
+  return steps;
+}
+
+std::optional<dead_reckoning::StrideInterpolationCounts> EntityPipeline::stride_spreading() const {
+  if (!spread_) return std::nullopt;
+  return spread_->counts();
+}
+
+std::optional<ScanStep> EntityPipeline::Step(const sensors::SensorRecord& record) {
   // Section 2: dead reckoning predicts, the scan matcher corrects against the reference.
   std::optional<odometry::OdometryEstimate> estimate = odometry_.Add(record);
   if (!estimate) return std::nullopt;
@@ -86,6 +134,7 @@ std::optional<ScanStep> EntityPipeline::Add(const sensors::SensorRecord& record)
   step.world_from_body = geometry::Compose(map_from_odom_, estimate->world_from_body);
   step.covariance = RotateCovariance(estimate->covariance, map_from_odom_);
   step.odometry = std::move(*estimate);
+  step.scan = scan;
   last_world_from_body_ = step.world_from_body;
   // Section 3: the scan goes into the local grid at the corrected pose; lines come out of it.
   // A grid just reset by a plan correction is fresh: nothing to extract at this scan.
@@ -120,6 +169,7 @@ std::optional<localisation::MapCorrection> EntityPipeline::LocaliseOnPlan(
 
 std::optional<line_map::MapDelta> EntityPipeline::UpdateMap(
     const sensors::LaserScan& scan, const geometry::Pose2& world_from_body, bool may_extract) {
+  if (!options_.build_line_map) return std::nullopt;
   // The laser sits at the body origin (as in the simulator and the CARMEN logs).
   if (grid_.Insert(scan, world_from_body)) grid_has_scans_ = true;
   if (!last_extraction_pose_) last_extraction_pose_ = world_from_body;

@@ -1,8 +1,10 @@
 #pragma once
-// The per-entity facade (paper sections 2 and 3): predict with dead reckoning or odometry, match
-// the scan against the reference, update the local grid, extract lines and integrate them into
-// the entity's line map, apply corrections from the fusion service and keep the global map it
-// sends. Pure: no DDS, no threads, no files. One instance per entity; not thread-safe.
+// The per-entity facade (paper sections 2 and 3): spread a person's strides over the scans they
+// span, predict with dead reckoning or odometry, match the scan against the reference, update the
+// local grid, extract lines and integrate them into the entity's line map, apply corrections from
+// the fusion service and keep the global map it sends. Every program that runs an entity's chain
+// (`pena odometry`, pena-entity, the benchmarks) calls this class. Pure: no DDS, no threads, no
+// files. One instance per entity; not thread-safe.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -12,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "pena/dead_reckoning/stride_interpolator.hpp"
 #include "pena/geometry/pose2.hpp"
 #include "pena/geometry/segment2.hpp"
 #include "pena/grid/local_grid.hpp"
@@ -26,7 +29,11 @@ namespace pena::pipeline {
 
 // Options of the whole per-entity chain; validated by EntityPipeline's constructor.
 struct EntityPipelineOptions {
+  // Its dead_reckoning.stride_interpolation also says whether a person's strides are spread over
+  // the scans inside them before the odometry sees them (on by default; docs/dead-reckoning.md).
   odometry::LaserOdometryOptions odometry;
+  // The local grid, line extraction and line map; off for the poses alone (`pena odometry`).
+  bool build_line_map = true;
   grid::LocalGridOptions local_grid;
   line_map::LineExtractionOptions extraction;
   line_map::LineMapOptions line_map;
@@ -52,6 +59,7 @@ void ValidateEntityPipelineOptions(const EntityPipelineOptions& options);
 
 // What one laser scan produced.
 struct ScanStep {
+  sensors::LaserScan scan;              // the scan this step placed, as it was fed
   odometry::OdometryEstimate odometry;  // in the odometry frame (odom_from_body)
   geometry::Pose2 world_from_body;      // map_from_odom * odom_from_body: the best estimate
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // of world_from_body (x, y, theta)
@@ -109,8 +117,17 @@ class EntityPipeline {
                  std::string entity_id, const geometry::Pose2& world_from_start,
                  double start_stamp_s);
 
-  // Feeds one record in time order; a laser scan yields its step, anything else nullopt.
-  std::optional<ScanStep> Add(const sensors::SensorRecord& record);
+  // Feeds one record in time order. Its scans come out of Next: a person's records wait in the
+  // stride spreading for the report that ends their stride, so a record may release no scan or
+  // several; other entities' records are ready at once.
+  void Push(sensors::SensorRecord record);
+  // Processes the ready records up to the next laser scan and returns its step; nullopt when no
+  // scan is ready. A correction applied between two calls acts from the next scan on.
+  std::optional<ScanStep> Next();
+  // End of input: what the stride spreading holds becomes ready (take it with Next, then Flush).
+  void EndOfInput();
+  // Push, then every step Next gives: for callers that act on no step before the next one.
+  std::vector<ScanStep> Add(const sensors::SensorRecord& record);
   // Extracts the lines of the current window into the line map (end of input); the delta may
   // be empty.
   line_map::MapDelta Flush();
@@ -138,10 +155,18 @@ class EntityPipeline {
   // The current correction of the odometry frame.
   const geometry::Pose2& map_from_odom() const { return map_from_odom_; }
   const odometry::OdometryCounts& odometry_counts() const { return odometry_.counts(); }
+  // The odometry itself (its dead-reckoning counts, for reports).
+  const odometry::LaserOdometry& odometry() const { return odometry_; }
+  // What the stride spreading did; nullopt when it is off (not a person, or disabled).
+  std::optional<dead_reckoning::StrideInterpolationCounts> stride_spreading() const;
   const PipelineCounts& counts() const { return counts_; }
 
  private:
   static const EntityPipelineOptions& Validated(const EntityPipelineOptions& options);
+  // The next record ready for the odometry, if any.
+  std::optional<sensors::SensorRecord> PopReady();
+  // One record after the stride spreading: a laser scan yields its step, anything else nullopt.
+  std::optional<ScanStep> Step(const sensors::SensorRecord& record);
   // Extracts the lines of `image` and integrates them; the delta may be empty.
   line_map::MapDelta ExtractAndIntegrate(const grid::GridImage& image);
   // Runs the grid and line steps for a scan placed at world_from_body (extraction only if
@@ -163,6 +188,9 @@ class EntityPipeline {
 
   EntityPipelineOptions options_;
   std::string entity_id_;
+  // A person's strides spread over their scans (dead_reckoning::StrideInterpolator); unset when off.
+  std::optional<dead_reckoning::StrideInterpolator> spread_;
+  std::deque<sensors::SensorRecord> ready_;  // pushed records, when nothing is spread
   odometry::LaserOdometry odometry_;
   grid::LocalGrid grid_;
   line_map::LineMap local_map_;

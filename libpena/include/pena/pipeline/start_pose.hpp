@@ -1,6 +1,6 @@
 #pragma once
-// Where an entity's run starts when nobody says: the rule `pena odometry` and `pena map` use
-// (tools/pena/cli_support), here for the services.
+// Where an entity's run starts when nobody says: the one rule of pena-entity, pena-sensor-replay,
+// the benchmarks and the `pena` subcommands (tools/pena/cli_support).
 
 #include <string>
 #include <vector>

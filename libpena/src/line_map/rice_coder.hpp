@@ -1,6 +1,6 @@
 #pragma once
-// Adaptive Golomb-Rice codes on a bit stream, for the gateway's map packing (docs/gateway.md,
-// "Map deltas"). A value u costs (u >> k) one-bits, a zero and k low bits, where each field's
+// Adaptive Golomb-Rice codes on a bit stream, for the map packing (map_packing.hpp,
+// docs/gateway.md "Map deltas"). A value u costs (u >> k) one-bits, a zero and k low bits, where each field's
 // context picks k from the mean of the values it has coded so far (as in LOCO-I / JPEG-LS).
 // Both sides update the context the same way, so nothing about k travels. Values whose quotient
 // would exceed kRiceEscapeQuotient go as an escape: that many one-bits, 6 bits of bit length,
@@ -11,7 +11,7 @@
 #include <string>
 #include <string_view>
 
-namespace pena::gateway {
+namespace pena::line_map {
 
 inline constexpr std::uint64_t kRiceEscapeQuotient = 24;
 
@@ -66,4 +66,4 @@ class BitReader {
   std::string error_;
 };
 
-}  // namespace pena::gateway
+}  // namespace pena::line_map

@@ -1,6 +1,6 @@
-#include "pena/gateway/varint.hpp"
+#include "varint.hpp"
 
-namespace pena::gateway {
+namespace pena::line_map {
 
 void ByteWriter::PutVarint(std::uint64_t value) {
   while (value >= 0x80U) {
@@ -60,4 +60,4 @@ void ByteReader::Fail(const std::string& why) {
   if (error_.empty()) error_ = "byte " + std::to_string(position_) + ": " + why;
 }
 
-}  // namespace pena::gateway
+}  // namespace pena::line_map

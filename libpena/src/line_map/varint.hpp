@@ -1,12 +1,12 @@
 #pragma once
-// LEB128 varints and zig-zag signed integers for the gateway's packed encodings. The reader is
+// LEB128 varints and zig-zag signed integers for the map packing (map_packing.hpp). The reader is
 // bounds-checked: past the end or on an overlong varint it fails once and returns zeros after.
 
 #include <cstdint>
 #include <string>
 #include <string_view>
 
-namespace pena::gateway {
+namespace pena::line_map {
 
 // Zig-zag maps small magnitudes of either sign to small unsigned values (0,-1,1,-2 -> 0,1,2,3).
 constexpr std::uint64_t ZigZag(std::int64_t value) {
@@ -57,4 +57,4 @@ class ByteReader {
   std::string error_;
 };
 
-}  // namespace pena::gateway
+}  // namespace pena::line_map

@@ -1,4 +1,4 @@
-#include "pena/gateway/map_packing.hpp"
+#include "pena/line_map/map_packing.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -6,15 +6,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "pena/gateway/rice_coder.hpp"
-#include "pena/gateway/varint.hpp"
+#include "rice_coder.hpp"
+#include "varint.hpp"
 
-namespace pena::gateway {
+namespace pena::line_map {
 namespace {
 
-using line_map::LineSegment;
-
-// Largest coordinate in quanta a packed segment may carry (line_map::kMaxCoordinateM in mm).
+// Largest coordinate in quanta a packed segment may carry (kMaxCoordinateM in mm).
 constexpr std::int64_t kMaxCoordinateQuanta = 2'000'000'000;
 // Largest count (support cells, observations) a packed segment may carry.
 constexpr std::int64_t kMaxCount = std::int64_t{1} << 50;
@@ -24,12 +22,12 @@ constexpr std::uint64_t kMinSegmentBits = 11;
 // The quanta of `value_m`, throwing if it is not an exact multiple (what LineMap stores) or lies
 // beyond what a LineMap holds.
 std::int64_t ExactQuanta(double value_m, double quantum_m, const char* what) {
-  if (!(std::abs(value_m) <= line_map::kMaxCoordinateM)) {
+  if (!(std::abs(value_m) <= kMaxCoordinateM)) {
     throw std::invalid_argument(std::string("map packing: ") + what + " " +
                                 std::to_string(value_m) + " is beyond the map's range");
   }
-  const std::int64_t quanta = line_map::ToQuanta(value_m, quantum_m);
-  if (line_map::FromQuanta(quanta, quantum_m) != value_m) {
+  const std::int64_t quanta = ToQuanta(value_m, quantum_m);
+  if (FromQuanta(quanta, quantum_m) != value_m) {
     throw std::invalid_argument(std::string("map packing: ") + what + " " +
                                 std::to_string(value_m) + " is not on the map's quanta");
   }
@@ -88,7 +86,7 @@ class SegmentPacker {
 
  private:
   void PutOne(const LineSegment& s) {
-    const double q = line_map::kCoordinateQuantumM;
+    const double q = kCoordinateQuantumM;
     if (s.id <= 0) throw std::invalid_argument("map packing: segment id must be > 0");
     const std::int64_t sx = ExactQuanta(s.segment.start_m.x(), q, "start x");
     const std::int64_t sy = ExactQuanta(s.segment.start_m.y(), q, "start y");
@@ -96,7 +94,7 @@ class SegmentPacker {
     const std::int64_t dy = ExactQuanta(s.segment.end_m.y(), q, "end y") - sy;
     const std::int64_t support = ExactCount(s.support_cells, "support_cells");
     const std::int64_t observations = ExactCount(s.observations, "observations");
-    const std::int64_t rms = ExactQuanta(s.rms_error_m, line_map::kRmsQuantumM, "rms error");
+    const std::int64_t rms = ExactQuanta(s.rms_error_m, kRmsQuantumM, "rms error");
     if (rms < 0 || rms > kMaxCount) throw std::invalid_argument("map packing: bad rms error");
     out_.PutRice(c_.id_step, ZigZag(s.id - previous_id_ - 1));
     const bool same_sources = s.provenance == previous_sources_;
@@ -189,7 +187,7 @@ class SegmentUnpacker {
     }
   }
   LineSegment GetOne() {
-    const double q = line_map::kCoordinateQuantumM;
+    const double q = kCoordinateQuantumM;
     LineSegment s;
     previous_id_ = Step(c_.id_step, previous_id_ + 1, kMaxCoordinateQuanta, "id");
     s.id = previous_id_;
@@ -205,16 +203,16 @@ class SegmentUnpacker {
     const std::int64_t minor = Step(c_.minor, 0, 2 * kMaxCoordinateQuanta, "end step");
     const std::int64_t ex = x_major ? major : minor;
     const std::int64_t ey = x_major ? minor : major;
-    s.segment.start_m = {line_map::FromQuanta(previous_x_, q), line_map::FromQuanta(previous_y_, q)};
-    s.segment.end_m = {line_map::FromQuanta(Bounded(previous_x_ + ex, "end x"), q),
-                       line_map::FromQuanta(Bounded(previous_y_ + ey, "end y"), q)};
+    s.segment.start_m = {FromQuanta(previous_x_, q), FromQuanta(previous_y_, q)};
+    s.segment.end_m = {FromQuanta(Bounded(previous_x_ + ex, "end x"), q),
+                       FromQuanta(Bounded(previous_y_ + ey, "end y"), q)};
     const std::int64_t support = Count(c_.support, "support_cells");
     s.support_cells = static_cast<double>(support);
     const std::int64_t observations =
         Step(c_.extra_observations, support, kMaxCount, "observations");
     if (observations < 0 && !in_.failed()) in_.Fail("observations < 0");
     s.observations = static_cast<double>(observations);
-    s.rms_error_m = line_map::FromQuanta(Count(c_.rms, "rms error"), line_map::kRmsQuantumM);
+    s.rms_error_m = FromQuanta(Count(c_.rms, "rms error"), kRmsQuantumM);
     return s;
   }
   std::int64_t Bounded(std::int64_t value, const char* what) {
@@ -243,7 +241,7 @@ bool Finish(BitReader& in, std::string* error) {
 
 }  // namespace
 
-std::string PackDelta(const line_map::MapDelta& delta) {
+std::string PackDelta(const MapDelta& delta) {
   BitWriter out;
   FieldContexts contexts;
   SegmentPacker packer(out, contexts);
@@ -262,11 +260,11 @@ std::string PackDelta(const line_map::MapDelta& delta) {
   return out.Take();
 }
 
-std::optional<line_map::MapDelta> UnpackDelta(std::string_view bytes, std::string* error) {
+std::optional<MapDelta> UnpackDelta(std::string_view bytes, std::string* error) {
   BitReader in(bytes);
   FieldContexts contexts;
   SegmentUnpacker unpacker(in, contexts);
-  line_map::MapDelta delta;
+  MapDelta delta;
   unpacker.GetTable();
   delta.added = unpacker.Get();
   delta.changed = unpacker.Get();
@@ -286,7 +284,7 @@ std::optional<line_map::MapDelta> UnpackDelta(std::string_view bytes, std::strin
   return delta;
 }
 
-std::string PackSnapshot(const line_map::MapSnapshot& snapshot) {
+std::string PackSnapshot(const MapSnapshot& snapshot) {
   BitWriter out;
   FieldContexts contexts;
   SegmentPacker packer(out, contexts);
@@ -297,11 +295,11 @@ std::string PackSnapshot(const line_map::MapSnapshot& snapshot) {
   return out.Take();
 }
 
-std::optional<line_map::MapSnapshot> UnpackSnapshot(std::string_view bytes, std::string* error) {
+std::optional<MapSnapshot> UnpackSnapshot(std::string_view bytes, std::string* error) {
   BitReader in(bytes);
   FieldContexts contexts;
   SegmentUnpacker unpacker(in, contexts);
-  line_map::MapSnapshot snapshot;
+  MapSnapshot snapshot;
   snapshot.next_id = UnZigZag(in.GetRice(contexts.next_id));
   unpacker.GetTable();
   snapshot.segments = unpacker.Get();
@@ -309,4 +307,4 @@ std::optional<line_map::MapSnapshot> UnpackSnapshot(std::string_view bytes, std:
   return snapshot;
 }
 
-}  // namespace pena::gateway
+}  // namespace pena::line_map

@@ -1,9 +1,9 @@
-#include "pena/gateway/rice_coder.hpp"
+#include "rice_coder.hpp"
 
 #include <algorithm>
 #include <bit>
 
-namespace pena::gateway {
+namespace pena::line_map {
 namespace {
 
 // The running sum is capped so it never overflows; k then tops out at 48.
@@ -148,4 +148,4 @@ bool BitReader::Finish() {
   return !failed();
 }
 
-}  // namespace pena::gateway
+}  // namespace pena::line_map
