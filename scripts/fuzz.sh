@@ -18,7 +18,7 @@ all=(fuzz_carmen fuzz_mission_log fuzz_relations fuzz_tum fuzz_line_csv fuzz_svg
      fuzz_from_dds fuzz_dds_convert fuzz_browser_request)
 targets=("$@")
 if ((${#targets[@]} == 0)); then
-  # PENA_FUZZ_SKIP: targets left out of a run over all (open findings, docs/fuzzing.md).
+  # PENA_FUZZ_SKIP: targets left out of a run over all (a finding being worked on).
   for target in "${all[@]}"; do
     [[ " ${PENA_FUZZ_SKIP:-} " == *" $target "* ]] && echo "fuzz: $target skipped (PENA_FUZZ_SKIP)" && continue
     targets+=("$target")

@@ -11,8 +11,6 @@ ctest --test-dir "$build_dir" --output-on-failure -j "${PENA_JOBS:-$(nproc)}"
 # libpena's unit tests and every decoder's fuzz corpus under AddressSanitizer + UBSan, then a
 # short fuzz run per decoder (docs/fuzzing.md; PENA_FUZZ_S seconds each, 0 skips it).
 bash scripts/sanitizers.sh
-# fuzz_from_dds is left out until its open finding is fixed (docs/fuzzing.md, "Open findings");
-# its corpus still replays above.
 if [[ ${PENA_FUZZ_S:-20} != 0 ]]; then
-  PENA_FUZZ_SKIP=${PENA_FUZZ_SKIP-fuzz_from_dds} bash scripts/fuzz.sh "${PENA_FUZZ_S:-20}"
+  bash scripts/fuzz.sh "${PENA_FUZZ_S:-20}"
 fi

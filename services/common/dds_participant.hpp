@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "dds_sample_bounds.hpp"
+
 namespace pena::services {
 
 // A DDS entity could not be created (names the entity and the profile).
@@ -63,12 +65,17 @@ void LoadProfilesFile(const std::filesystem::path& path);
 // The generated type with a deserialize that refuses (false) every payload it cannot read. The
 // generated code catches only NotEnoughMemoryException, so a sample from any peer with, e.g., a
 // bad encapsulation header (BadParamException) would escape take_next_sample and end the
-// process. Every topic of a Participant registers its type this way.
+// process; and it sizes a Segment's provenance list from the wire unchecked, so the lists are
+// checked against their bounds first (dds_sample_bounds.hpp). Every topic of a Participant
+// registers its type this way.
 template <class PubSubType>
 class CheckedType : public PubSubType {
  public:
   bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t* payload, void* data) override {
     try {
+      if (!SampleKeepsBounds(*payload, static_cast<const typename PubSubType::type*>(nullptr))) {
+        return false;
+      }
       return PubSubType::deserialize(payload, data);
     } catch (const std::exception&) {
       return false;
