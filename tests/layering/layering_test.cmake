@@ -24,8 +24,10 @@ function(run_case name upper_deps app_deps expected)
       message(FATAL_ERROR "${name}: built, although it includes ${expected} without linking its "
                           "module: the include roots do not enforce the layering")
     endif()
-    string(FIND "${output}" "${expected}: No such file or directory" at)
-    if(at EQUAL -1)
+    # GCC: "x.hpp: No such file or directory"; Clang (the sanitizer build): "'x.hpp' file not found".
+    string(FIND "${output}" "${expected}: No such file or directory" at_gcc)
+    string(FIND "${output}" "'${expected}' file not found" at_clang)
+    if(at_gcc EQUAL -1 AND at_clang EQUAL -1)
       message(FATAL_ERROR "${name}: failed, but not for the missing ${expected}:\n${output}")
     endif()
   endif()

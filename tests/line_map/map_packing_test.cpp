@@ -46,7 +46,7 @@ TEST(Varint, ReaderFailsOnTruncatedAndOverlongInput) {
 
 TEST(RiceCoder, RoundTripsExtremesEscapesAndAdaptation) {
   std::vector<std::uint64_t> values = {0, 1, 2, 3, 255, 256, 4095, 1U << 20, UINT64_MAX, 0, 7};
-  for (std::uint64_t i = 0; i < 300; ++i) values.push_back((i * 2654435761U) % (1U << (i % 40)));
+  for (std::uint64_t i = 0; i < 300; ++i) values.push_back((i * 2654435761U) % (std::uint64_t{1} << (i % 40)));
   BitWriter out;
   RiceContext written(16);
   for (std::uint64_t value : values) out.PutRice(written, value);
@@ -74,11 +74,13 @@ TEST(RiceCoder, ReaderFailsOnTruncationTrailingBytesAndBadPadding) {
     EXPECT_TRUE(in.failed()) << "size " << size;
   }
   RiceContext again(1);
-  BitReader trailing(bytes + "x");
+  const std::string with_trailing = bytes + "x";  // BitReader views its input: keep it alive
+  BitReader trailing(with_trailing);
   EXPECT_EQ(trailing.GetRice(again), 100U);
   EXPECT_FALSE(trailing.Finish());
   EXPECT_NE(trailing.error().find("trailing"), std::string::npos);
-  BitReader all_ones(std::string(2, '\xff'));  // 16 one-bits: a quotient cut short
+  const std::string ones_bytes(2, '\xff');  // 16 one-bits: a quotient cut short
+  BitReader all_ones(ones_bytes);
   RiceContext ones(1);
   all_ones.GetRice(ones);
   EXPECT_TRUE(all_ones.failed());
