@@ -21,6 +21,7 @@
 #include "pena/sim/simulator.hpp"
 #include "process_support.hpp"
 #include "service_test_support.hpp"
+#include "trajectory_checks.hpp"
 
 namespace pena::services {
 namespace {
@@ -114,29 +115,6 @@ std::string ExpectExitZero(const Process& run, const char* log_name) {
   return log;
 }
 
-// Largest position and heading difference between two trajectories of equal length, with their
-// stamps equal.
-void ExpectSameTrajectory(const std::string& id, const geometry::Trajectory& file,
-                          const geometry::Trajectory& live) {
-  ASSERT_EQ(live.size(), file.size()) << id;
-  ASSERT_GT(file.size(), 40u) << id;
-  double max_position_m = 0.0;
-  double max_heading_rad = 0.0;
-  for (std::size_t i = 0; i < file.size(); ++i) {
-    ASSERT_EQ(live[i].stamp_s, file[i].stamp_s) << id << " pose " << i;
-    const geometry::Pose2& a = file[i].pose;
-    const geometry::Pose2& b = live[i].pose;
-    max_position_m = std::max(max_position_m, std::hypot(a.x_m - b.x_m, a.y_m - b.y_m));
-    max_heading_rad =
-        std::max(max_heading_rad, std::abs(geometry::NormalizeAngle(a.theta_rad - b.theta_rad)));
-  }
-  std::cout << id << ": " << file.size() << " poses, largest difference live vs file "
-            << max_position_m << " m, " << max_heading_rad << " rad\n";
-  // The same records in the same order through the same deterministic chain: the same poses.
-  EXPECT_EQ(max_position_m, 0.0) << id;
-  EXPECT_EQ(max_heading_rad, 0.0) << id;
-}
-
 // The live run (with `security`: each process with its entity's identity) against the file run.
 void ExpectLiveEqualsFile(bool secured) {
   const int file_domain = testing::TestDomain(40);
@@ -193,10 +171,13 @@ void ExpectLiveEqualsFile(bool secured) {
   }
   EXPECT_NE(replay_log.find("and the end marker"), std::string::npos) << replay_log;
 
-  ExpectSameTrajectory("ff1", io::ReadTum(file_ff1.out / "trajectory.tum"),
-                       io::ReadTum(live_ff1.out / "trajectory.tum"));
-  ExpectSameTrajectory("robot1", io::ReadTum(file_robot.out / "trajectory.tum"),
-                       io::ReadTum(live_robot.out / "trajectory.tum"));
+  // The same records in the same order through the same deterministic chain: the same poses.
+  testing::ExpectSameTrajectory("ff1", io::ReadTum(file_ff1.out / "trajectory.tum"),
+                                io::ReadTum(live_ff1.out / "trajectory.tum"), "live vs file", 0.0,
+                                0.0);
+  testing::ExpectSameTrajectory("robot1", io::ReadTum(file_robot.out / "trajectory.tum"),
+                                io::ReadTum(live_robot.out / "trajectory.tum"), "live vs file", 0.0,
+                                0.0);
 }
 
 TEST(LiveInput, ReplayedSensorTopicsGiveTheTrajectoryOfTheFileRun) { ExpectLiveEqualsFile(false); }

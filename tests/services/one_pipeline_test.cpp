@@ -14,6 +14,7 @@
 #include "pena/sim/simulator.hpp"
 #include "process_support.hpp"
 #include "service_test_support.hpp"
+#include "trajectory_checks.hpp"
 
 namespace pena::services {
 namespace {
@@ -68,24 +69,9 @@ TEST(OnePipeline, PenaOdometryAndPenaEntityGiveTheSameTrajectory) {
               "--profiles-file", (dds / "pena-loopback.xml").string(), "--profiles-file",
               (dds / "pena-qos.xml").string()},
              entity / "entity.log");
-    const geometry::Trajectory offline = io::ReadTum(odometry / "trajectory.tum");
-    const geometry::Trajectory online = io::ReadTum(entity / "trajectory.tum");
-    ASSERT_EQ(online.size(), offline.size()) << id;
-    ASSERT_GT(offline.size(), 40u) << id;
-    double largest_m = 0.0;
-    double largest_rad = 0.0;
-    for (std::size_t i = 0; i < offline.size(); ++i) {
-      ASSERT_EQ(online[i].stamp_s, offline[i].stamp_s) << id << " pose " << i;
-      const geometry::Pose2& a = offline[i].pose;
-      const geometry::Pose2& b = online[i].pose;
-      largest_m = std::max(largest_m, std::hypot(a.x_m - b.x_m, a.y_m - b.y_m));
-      largest_rad =
-          std::max(largest_rad, std::abs(geometry::NormalizeAngle(a.theta_rad - b.theta_rad)));
-    }
-    std::cout << id << ": " << offline.size() << " poses, largest difference pena-entity vs pena "
-              << "odometry " << largest_m << " m, " << largest_rad << " rad\n";
-    EXPECT_LE(largest_m, 1e-3) << id;
-    EXPECT_LE(largest_rad, 1e-3) << id;
+    testing::ExpectSameTrajectory(id, io::ReadTum(odometry / "trajectory.tum"),
+                                  io::ReadTum(entity / "trajectory.tum"),
+                                  "pena-entity vs pena odometry", 1e-3, 1e-3);
   }
 }
 
