@@ -123,16 +123,15 @@ void FusionService::Handle(const pena_dds::LineMapDelta& sample, const SampleMet
                SizeOf<pena_dds::LineMapDeltaPubSubType>(sample));
   line_map::MapDelta delta = services::FromDds(sample);
   EnsureJoined(entity_id, meta);
+  // Journalled before the delta: a restarted fusion knows when each wall it holds was mapped.
+  RecordWallStamps(entity_id, delta.added, sample.stamp_s());
   const std::uint64_t version_before = store_->state().local_map(entity_id).version();
   AfterPlacement(entity_id, Apply(fusion::LocalDelta{NowS(), entity_id, delta}));
   if (store_->state().local_map(entity_id).version() == version_before) return;  // not applied
   std::map<std::int64_t, double>& stamps = wall_stamp_s_[entity_id];
   for (const std::int64_t id : delta.removed) stamps.erase(id);
   std::vector<std::int64_t> added_ids;
-  for (const line_map::LineSegment& segment : delta.added) {
-    stamps[segment.id] = sample.stamp_s();
-    added_ids.push_back(segment.id);
-  }
+  for (const line_map::LineSegment& segment : delta.added) added_ids.push_back(segment.id);
   FollowWallMove(entity_id, sample.stamp_s(), added_ids);
 }
 
@@ -145,11 +144,12 @@ void FusionService::Handle(const pena_dds::LineMapSnapshot& sample, const Sample
   // Already held (the entity's final snapshot after every delta arrived): nothing to journal.
   const line_map::LineMap& local = store_->state().local_map(entity_id);
   if (local.version() == snapshot.version && line_map::SameMap(local.Snapshot(), snapshot)) return;
-  std::map<std::int64_t, double> stamps;  // a wall not heard before dates from the snapshot
+  // A wall not heard before dates from the snapshot (journalled before it is applied).
+  RecordWallStamps(entity_id, snapshot.segments, sample.stamp_s());
+  std::map<std::int64_t, double> stamps;
   const std::map<std::int64_t, double>& known = wall_stamp_s_[entity_id];
   for (const line_map::LineSegment& segment : snapshot.segments) {
-    const auto it = known.find(segment.id);
-    stamps[segment.id] = it == known.end() ? sample.stamp_s() : it->second;
+    stamps[segment.id] = known.at(segment.id);
   }
   wall_stamp_s_[entity_id] = std::move(stamps);
   AfterPlacement(entity_id, Apply(fusion::LocalSnapshot{NowS(), entity_id, std::move(snapshot)}));
@@ -282,7 +282,9 @@ void FusionService::HandleOperatorMove(const pena_dds::OperatorCorrection& sampl
   }
   if (placed_entity) {
     // A placed entity keeps its own frame: its walls move with its alignment (journaled), and
-    // it is told its new frame.
+    // it is told its new frame. The walls it mapped up to the origin were right: they are moved
+    // back (journaled too), so that only its data from the origin on moves, as for an entity
+    // with a known start.
     const fusion::FusionOutput output =
         Apply(fusion::OperatorCorrection{NowS(), entity_id, corrected_from_wrong, author});
     if (!output.problem.empty()) {
@@ -290,6 +292,7 @@ void FusionService::HandleOperatorMove(const pena_dds::OperatorCorrection& sampl
       AnswerOperator(sample, output.problem);
       return;
     }
+    KeepWallsBefore(entity_id, record);
     SendPlacement(entity_id, 1.0, 0);
   } else {
     // An entity with a known start moves its own frame: map_from_odom <- T * map_from_odom, from
@@ -316,6 +319,23 @@ void FusionService::HandleOperatorMove(const pena_dds::OperatorCorrection& sampl
                author, id, entity_id, corrected_from_wrong.x_m, corrected_from_wrong.y_m,
                angle_deg, record.from_stamp_s);
   AnswerOperator(sample, "");
+}
+
+void FusionService::KeepWallsBefore(const std::string& entity_id, const OperatorLogRecord& record) {
+  fusion::MoveEntityWalls keep{NowS(), entity_id, geometry::Inverse(record.corrected_from_wrong),
+                               {}, record.operator_id};
+  for (const auto& [id, stamp_s] : wall_stamp_s_[entity_id]) {
+    if (stamp_s <= record.from_stamp_s) keep.segment_ids.push_back(id);
+  }
+  if (keep.segment_ids.empty()) return;
+  const std::size_t count = keep.segment_ids.size();
+  if (const fusion::FusionOutput output = Apply(std::move(keep)); !output.problem.empty()) {
+    spdlog::warn("operator correction {}: walls of {} mapped before {:.3f} s moved with the rest: {}",
+                 record.correction_id, entity_id, record.from_stamp_s, output.problem);
+    return;
+  }
+  spdlog::info("operator correction {}: {} wall(s) {} mapped up to {:.3f} s kept where they were",
+               record.correction_id, count, entity_id, record.from_stamp_s);
 }
 
 void FusionService::StartWallMove(const std::string& entity_id, const OperatorLogRecord& record,
@@ -410,7 +430,14 @@ void FusionService::Handle(const pena_dds::Annotation& sample, const SampleMeta&
     const fusion::FusionOutput output = Apply(fusion::PutAnnotation{NowS(), annotation});
     if (output.annotation) annotation_ids_[key] = output.annotation->annotation.id;
   }
-  // Relayed so that late joiners get it after the operator left (same key: readers replace).
+  // Journalled, then relayed so that late joiners get it after the operator left (same key:
+  // readers replace), and after a restart of this fusion too (Startup).
+  try {
+    annotation_log_->Append(sample);
+  } catch (const std::runtime_error& error) {
+    spdlog::error("annotation {}: not journalled (a restarted fusion will not publish it): {}",
+                  key, error.what());
+  }
   pena_dds::Annotation relay = sample;
   if (annotation_writer_) annotation_writer_->Write(relay);
 }

@@ -67,6 +67,9 @@ FusionService::FusionService(FusionServiceOptions options)
       sync_reader_(participant_, topics::kSyncRequest,
                    Enqueue<pena_dds::SyncRequestPubSubType>("sync_request")) {
   operator_log_.emplace(options_.state_dir / "operator_corrections.csv");
+  wall_stamp_log_.emplace(options_.state_dir / "wall_stamps.csv");
+  annotation_log_.emplace(options_.state_dir / "annotations.cdr");
+  RecoverWallStamps();
   CreateOperatorEndpoints();
   if (options_.lockstep) lockstep_order_.emplace(options_.lockstep_order);
   const fusion::FusionRecovery& recovery = store_->recovery();
@@ -87,6 +90,36 @@ FusionService::FusionService(FusionServiceOptions options)
 }
 
 FusionService::~FusionService() = default;
+
+void FusionService::RecoverWallStamps() {
+  std::size_t recovered = 0;
+  for (const auto& [entity_id, journalled] : wall_stamp_log_->stamps()) {
+    std::map<std::int64_t, double>& stamps = wall_stamp_s_[entity_id];
+    for (const line_map::LineSegment& wall : store_->state().local_map(entity_id).segments()) {
+      if (const auto it = journalled.find(wall.id); it != journalled.end()) {
+        stamps[wall.id] = it->second;
+        ++recovered;
+      }
+    }
+  }
+  if (recovered > 0) spdlog::info("{} wall stamps recovered from the journal", recovered);
+}
+
+void FusionService::RecordWallStamps(const std::string& entity_id,
+                                     const std::vector<line_map::LineSegment>& walls,
+                                     double stamp_s) {
+  std::map<std::int64_t, double>& stamps = wall_stamp_s_[entity_id];
+  std::vector<std::pair<std::int64_t, double>> fresh;
+  for (const line_map::LineSegment& wall : walls) {
+    if (stamps.emplace(wall.id, stamp_s).second) fresh.emplace_back(wall.id, stamp_s);
+  }
+  try {
+    wall_stamp_log_->Append(entity_id, fresh);
+  } catch (const std::runtime_error& error) {
+    // The map goes on; only a rotation after a restart would then leave these walls where they are.
+    spdlog::error("{}: wall stamps not journalled: {}", entity_id, error.what());
+  }
+}
 
 void FusionService::CreateOperatorEndpoints() {
   try {
@@ -129,6 +162,12 @@ void FusionService::Startup() {
   }
   // A restarted fusion republishes its map at once; entities resynchronise by version.
   PublishSnapshot();
+  // And the operator's marks, as last relayed, for the consoles that connect from now on.
+  if (annotation_writer_) {
+    std::vector<pena_dds::Annotation> marks = annotation_log_->Latest();
+    for (pena_dds::Annotation& mark : marks) annotation_writer_->Write(mark);
+    if (!marks.empty()) spdlog::info("{} operator marks published again from the journal", marks.size());
+  }
   RefreshCorrectionContext();
   next_tick_ns_ = NowNs() + SecondsToNs(options_.tick_period_s);
 }

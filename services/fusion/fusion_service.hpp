@@ -23,7 +23,9 @@
 #include "fusion_options.hpp"
 #include "fusion_stats.hpp"
 #include "lockstep_order.hpp"
+#include "annotation_log.hpp"
 #include "operator_log.hpp"
+#include "wall_stamp_log.hpp"
 #include "versions_log.hpp"
 #include "pena/fusion/correction_filter.hpp"
 #include "pena/fusion/fusion_store.hpp"
@@ -84,6 +86,11 @@ class FusionService {
   typename Reader<PubSubType>::SampleCallback Enqueue(const char* topic);
 
   void CreateOperatorEndpoints();
+  // The wall stamps journalled before a restart, for the walls the recovered local maps hold.
+  void RecoverWallStamps();
+  // Journals the stamps of walls not stamped yet (before the delta or snapshot is applied).
+  void RecordWallStamps(const std::string& entity_id, const std::vector<line_map::LineSegment>& walls,
+                        double stamp_s);
   void Startup();
   void Dispatch(const Event& event);
   void Handle(const pena_dds::EntityPose& sample, const SampleMeta& meta);
@@ -95,6 +102,9 @@ class FusionService {
   void HandleOperatorMove(const pena_dds::OperatorCorrection& sample);
   // Paper 4.1 for an entity with a known start: its walls mapped from the correction's origin
   // time on, until it applies the correction, move with it in the global map (MoveEntityWalls).
+  // A placed entity's rotation or translation moved all its walls with its alignment: those it
+  // mapped up to the correction's stamp go back (MoveEntityWalls by the inverse).
+  void KeepWallsBefore(const std::string& entity_id, const OperatorLogRecord& record);
   void StartWallMove(const std::string& entity_id, const OperatorLogRecord& record,
                      const geometry::Pose2& corrected_map_from_odom);
   // A delta or pose of an entity with a wall move in flight: moves the walls the delta began in
@@ -179,8 +189,10 @@ class FusionService {
   };
   std::map<std::string, LatestPose> latest_pose_;
   // Per entity, per local segment id: the mission stamp of the delta that added it (which of its
-  // walls an operator's move from a stamp on concerns).
+  // walls an operator's move from a stamp on concerns); journalled in wall_stamp_log_.
   std::map<std::string, std::map<std::int64_t, double>> wall_stamp_s_;
+  std::optional<WallStampLog> wall_stamp_log_;  // STATE_DIR/wall_stamps.csv
+  std::optional<AnnotationLog> annotation_log_;  // STATE_DIR/annotations.cdr
   // An operator's move of a known-start entity in flight (StartWallMove).
   struct WallMove {
     std::string correction_id;
