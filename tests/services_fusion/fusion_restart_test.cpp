@@ -2,10 +2,14 @@
 // console that connects afterwards sees every mark (and every retraction) although the console
 // that made them has left the domain; and it knows when each wall was mapped, so an operator's
 // rotation moves only the walls mapped after its origin, as it would have before the restart.
+// And a placed entity's rotation (start unknown) moves only its walls mapped after the origin.
 // Every participant uses deploy/dds/pena-loopback.xml and a domain of its own.
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
+#include <fstream>
+#include <set>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -15,6 +19,7 @@
 
 #include "dds_endpoints.hpp"
 #include "pena/io/line_csv.hpp"
+#include "pena/line_map/line_map.hpp"
 #include "pena_dds/entityPubSubTypes.h"
 #include "pena_dds/line_mapPubSubTypes.h"
 #include "pena_dds/operatorPubSubTypes.h"
@@ -267,6 +272,145 @@ TEST(FusionRestart, ARotationAfterKillNineMovesOnlyTheWallsMappedAfterItsOrigin)
   EXPECT_NEAR(std::max(before->start_m.x(), before->end_m.x()), 2.0, 0.01);
   EXPECT_NEAR(after->start_m.y(), 8.0, 0.01) << testing::ReadFile(csv);
   EXPECT_NEAR(after->end_m.y(), 8.0, 0.01);
+}
+
+// A placed entity (start unknown): a rotation from 15 s moves its walls mapped at 20 s and leaves
+// those mapped at 10 s where placement put them, on the plan. The plan: a corridor along x with
+// side corridors at x = 10, 20 and 30 (tests/fusion/placement_test.cpp); the entity sees it from
+// a frame 30 deg turned and shifted, first 15.5-24.5 m along it (10 s), then 24.5-40 m (20 s),
+// which places it.
+std::vector<line_map::LineSegment> Corridor(double from_x, double to_x) {
+  std::vector<line_map::LineSegment> walls;
+  const auto clip = [&](double x1, double y1, double x2, double y2) {
+    const double a = std::max(std::min(x1, x2), from_x);
+    const double b = std::min(std::max(x1, x2), to_x);
+    if (b - a > 0.05 || (x1 == x2 && x1 >= from_x && x1 <= to_x)) {
+      line_map::LineSegment wall;
+      wall.segment = {Eigen::Vector2d(x1 == x2 ? x1 : a, y1), Eigen::Vector2d(x1 == x2 ? x2 : b, y2)};
+      wall.support_cells = 40.0 * geometry::Length(wall.segment) + 10.0;
+      wall.observations = 2.0 * wall.support_cells;
+      wall.rms_error_m = 0.01;
+      walls.push_back(wall);
+    }
+  };
+  clip(0, 0, 40, 0);
+  double x = 0.0;
+  for (const double junction : {10.0, 20.0, 30.0}) {
+    clip(x, 2, junction - 0.75, 2);
+    clip(junction - 0.75, 2, junction - 0.75, 6);
+    clip(junction + 0.75, 2, junction + 0.75, 6);
+    x = junction + 0.75;
+  }
+  clip(x, 2, 40, 2);
+  clip(40, 0, 40, 2);
+  return walls;
+}
+
+TEST(FusionOperator, APlacedEntitysRotationMovesOnlyTheWallsMappedAfterItsOrigin) {
+  const int domain = testing::TestDomain(49);
+  const fs::path run = testing::ScratchDir("placed_rotation");
+  {
+    std::ofstream plan(run / "plan.csv");
+    plan << "id,x1,y1,x2,y2\n";
+    int id = 0;
+    for (const line_map::LineSegment& wall : Corridor(0, 40)) {
+      plan << id++ << ',' << wall.segment.start_m.x() << ',' << wall.segment.start_m.y() << ','
+           << wall.segment.end_m.x() << ',' << wall.segment.end_m.y() << '\n';
+    }
+  }
+  testing::UseLoopbackByDefault();
+  const fs::path dds = fs::path(PENA_SOURCE_DIR) / "deploy" / "dds";
+  const pid_t fusion = testing::Spawn(
+      {PENA_FUSION_BIN, "--state-dir", (run / "state").string(), "--out", (run / "fusion").string(),
+       "--plan", (run / "plan.csv").string(), "--no-corrections", "--domain", std::to_string(domain),
+       "--profiles-file", (dds / "pena-loopback.xml").string(), "--profiles-file",
+       (dds / "pena-qos.xml").string()},
+      run / "fusion.log");
+  ASSERT_GT(fusion, 0);
+  const geometry::Pose2 map_from_entity{20.3, -1.7, M_PI / 6.0};
+  const auto seen = [&](double from_x, double to_x) {
+    std::vector<line_map::LineSegment> walls = Corridor(from_x, to_x);
+    for (line_map::LineSegment& wall : walls) {
+      const geometry::Pose2 entity_from_map = geometry::Inverse(map_from_entity);
+      for (Eigen::Vector2d* p : {&wall.segment.start_m, &wall.segment.end_m}) {
+        const geometry::Pose2 moved = geometry::Compose(entity_from_map, geometry::Pose2{p->x(), p->y(), 0.0});
+        *p = Eigen::Vector2d(moved.x_m, moved.y_m);
+      }
+    }
+    return walls;
+  };
+  Participant entity(testing::LoopbackUdpDds(domain), "test-entity-ff8");
+  Writer<pena_dds::EntityStatusPubSubType> status_writer(entity, topics::kStatus);
+  Writer<pena_dds::LineMapDeltaPubSubType> delta_writer(entity, topics::kLineMapDelta);
+  pena_dds::EntityStatus status;
+  status.entity_id("ff8");
+  status.schema_version(pena_dds::SCHEMA_VERSION);
+  status.kind(pena_dds::ENTITY_HUMAN);
+  status.state(pena_dds::ENTITY_RUNNING);
+  status.start_unknown(true);
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  ASSERT_TRUE(status_writer.Write(status));
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  line_map::LineMap local;
+  std::set<std::int64_t> early, late;
+  for (const auto& [from_x, to_x, stamp_s] : {std::tuple{15.5, 24.5, 10.0}, std::tuple{24.5, 40.0, 20.0}}) {
+    const line_map::MapDelta delta = local.Integrate(seen(from_x, to_x), "ff8");
+    for (const line_map::LineSegment& wall : delta.added) (stamp_s < 15.0 ? early : late).insert(wall.id);
+    pena_dds::LineMapDelta sample = ToDdsLineMapDelta(delta, "ff8", stamp_s);
+    ASSERT_TRUE(delta_writer.Write(sample));
+  }
+  // Placed (the fusion says so in its log), then rotated by 10 deg about the map origin.
+  for (const auto until = Clock::now() + std::chrono::seconds(30);
+       Clock::now() < until && testing::ReadFile(run / "fusion.log").find("ff8: placed at") == std::string::npos;) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_NE(testing::ReadFile(run / "fusion.log").find("ff8: placed at"), std::string::npos)
+      << testing::ReadFile(run / "fusion.log");
+  Participant operator_console(testing::LoopbackUdpDds(domain), "test-operator");
+  Writer<pena_dds::OperatorCorrectionPubSubType> correction_writer(operator_console,
+                                                                   topics::kOperatorCorrection);
+  pena_dds::OperatorCorrection rotation;
+  rotation.correction_id("op/1");
+  rotation.schema_version(pena_dds::SCHEMA_VERSION);
+  rotation.operator_id("op");
+  rotation.kind(pena_dds::OPERATOR_ROTATE);
+  rotation.target_entity_id("ff8");
+  rotation.stamp_s(15.0);
+  rotation.wrong_point().x_m(1.0);
+  rotation.correct_point().x_m(std::cos(10.0 * M_PI / 180.0));
+  rotation.correct_point().y_m(std::sin(10.0 * M_PI / 180.0));
+  ASSERT_TRUE(correction_writer.Write(rotation));
+  for (const auto until = Clock::now() + std::chrono::seconds(30);
+       Clock::now() < until && testing::ReadFile(run / "fusion.log").find("op/1 of ff8 by") == std::string::npos;) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  kill(fusion, SIGTERM);
+  const int exit_code = testing::WaitExit(fusion, 20.0);
+  const std::string log = testing::ReadFile(run / "fusion.log");
+  ASSERT_EQ(exit_code, 0) << log;
+  ASSERT_NE(log.find("op/1 of ff8 by"), std::string::npos) << log;
+  // A wall of ff8 on the plan still merges with its plan wall; one turned by 10 deg does not.
+  std::map<std::int64_t, bool> on_plan;
+  for (const io::LineRow& row : io::ReadLineCsv(run / "fusion" / "global_map.csv")) {
+    std::stringstream keys(row.extra.substr(row.extra.rfind(',') + 1));
+    std::vector<std::int64_t> ids;
+    bool plan = false;
+    for (std::string key; keys >> key;) {
+      if (key.rfind("plan:", 0) == 0) plan = true;
+      if (key.rfind("ff8:", 0) == 0) ids.push_back(std::stoll(key.substr(4)));
+    }
+    for (const std::int64_t id : ids) on_plan[id] = plan;
+  }
+  int early_on_plan = 0, late_on_plan = 0, early_seen = 0, late_seen = 0;
+  for (const auto& [id, plan] : on_plan) {
+    if (early.contains(id)) { ++early_seen; early_on_plan += plan ? 1 : 0; }
+    if (late.contains(id)) { ++late_seen; late_on_plan += plan ? 1 : 0; }
+  }
+  EXPECT_GT(early_seen, 3) << log;
+  EXPECT_EQ(early_on_plan, early_seen) << "walls mapped before the origin moved\n" << log;
+  EXPECT_GT(late_seen, 3) << log;
+  EXPECT_EQ(late_on_plan, 0) << "walls mapped after the origin did not move\n" << log;
 }
 
 }  // namespace
