@@ -53,6 +53,7 @@ PoseUpdate ToPicture(const pena_dds::EntityPose& sample, std::int64_t heard_ns,
   pose.seq = sample.seq();
   pose.stamp_s = sample.stamp_s();
   pose.world_from_body = services::FromDds(sample.world_from_body());
+  pose.odom_from_body = services::FromDds(sample.odom_from_body());
   for (std::size_t i = 0; i < 9; ++i) pose.covariance[i] = sample.covariance()[i];
   pose.status = ToString(sample.status());
   pose.heard_ns = heard_ns;

@@ -250,6 +250,10 @@ nlohmann::json ConsolePicture::EntityJson(const std::string& id, const Entity& e
                    {"x", p.world_from_body.x_m},
                    {"y", p.world_from_body.y_m},
                    {"theta", p.world_from_body.theta_rad},
+                   // The entity's own odometry frame: world * inverse(odom) is the frame the
+                   // corrections put it in (a check of a correction compares frames with it).
+                   {"odom", json::array({p.odom_from_body.x_m, p.odom_from_body.y_m,
+                                         p.odom_from_body.theta_rad})},
                    {"cov", json::array({p.covariance[0], p.covariance[1], p.covariance[4]})},
                    {"status", p.status},
                    // Writer's clock, ms (fractional): a browser on this machine measures the

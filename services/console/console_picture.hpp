@@ -31,6 +31,7 @@ struct PoseUpdate {
   std::uint64_t seq = 0;
   double stamp_s = 0.0;                  // mission time
   geometry::Pose2 world_from_body;
+  geometry::Pose2 odom_from_body;        // the entity's own odometry frame (before corrections)
   double covariance[9] = {};             // of world_from_body, row-major (x, y, theta)
   std::string status;                    // "first", "matched", "degenerate", "failed", ...
   std::int64_t heard_ns = 0;             // this machine's clock at reception

@@ -10,7 +10,8 @@
 //   4. (--rotate ENTITY) the three-point rotation: the test corrupts the entity's heading by
 //      20 deg through the console, then clicks the three points on the page (origin, the wrong
 //      direction, the correct direction); the entity's published poses must come back within
-//      0.3 m of the truth.
+//      0.3 m of where its own tracking puts them in its frame before the corruption (see
+//      rotation() for why not the truth).
 // Prints figures; exits 1 with the reason on the first failed check.
 //
 //   node console_browser_test.js --url URL --out DIR --mission DIR [--entities 4] [--url2 URL]
@@ -439,12 +440,32 @@ async function click(page, x, y) {
   await page.mouse.click(box.x + sx, box.y + sy);
 }
 
+// Rigid 2-D poses [x, y, theta]: a * b, and the inverse.
+const compose = (a, b) => [a[0] + Math.cos(a[2]) * b[0] - Math.sin(a[2]) * b[1],
+                           a[1] + Math.sin(a[2]) * b[0] + Math.cos(a[2]) * b[1], a[2] + b[2]];
+const inverse = (a) => [-Math.cos(a[2]) * a[0] - Math.sin(a[2]) * a[1],
+                        Math.sin(a[2]) * a[0] - Math.cos(a[2]) * a[1], -a[2]];
+
+// The three-point rotation (paper section 4.1). This run goes without the fusion's corrections,
+// so the entity's own tracking drifts from the truth as it goes (ff2: under 0.3 m for its first
+// 80 s of mission time, 0.3-0.7 m after 120 s; `pena odometry` on its log says the same), and
+// how far into the mission the rotation comes depends on how fast the checks before it ran.
+// What the rotation is answerable for is the frame: the entity's poses after it must be where
+// its own tracking puts them in the frame it had before the corruption (map_from_odom, from
+// each pose's world and odometry frames). That frame is also what the operator restores: the
+// third click puts the entity where its new data lines up with what it mapped before.
 async function rotation(page, o, truth) {
   const id = o.rotate;
-  const error = (p) => { const t = truthAt(truth, p.stamp_s); return Math.hypot(p.x - t[0], p.y - t[1]); };
+  const truthError = (p) => { const t = truthAt(truth, p.stamp_s); return Math.hypot(p.x - t[0], p.y - t[1]); };
   const before = (await poses(page))[id];
   if (!before) fail(`no pose of ${id}`);
-  console.log(`rotation: ${id} at (${before.x.toFixed(2)}, ${before.y.toFixed(2)}), ${error(before).toFixed(2)} m from the truth`);
+  if (!before.odom) fail(`the page's pose of ${id} has no odometry frame`);
+  // Where the entity's own tracking, in its frame before the corruption, puts a pose.
+  const mapFromOdom = compose([before.x, before.y, before.theta], inverse(before.odom));
+  const uncorrupted = (p) => compose(mapFromOdom, p.odom);
+  const frameError = (p) => { const u = uncorrupted(p); return Math.hypot(p.x - u[0], p.y - u[1]); };
+  console.log(`rotation: ${id} at (${before.x.toFixed(2)}, ${before.y.toFixed(2)}) at ${before.stamp_s.toFixed(1)} s ` +
+              `of mission time, ${truthError(before).toFixed(2)} m from the truth (its own drift: no fusion corrections)`);
   // Corrupt: +20 deg about where it is now (a heading error the operator must fix).
   const c = Math.cos(20 * Math.PI / 180), s = Math.sin(20 * Math.PI / 180);
   const corrupt = await ack(page, { type: 'rotate', entity: id, origin: [before.x, before.y],
@@ -456,36 +477,59 @@ async function rotation(page, o, truth) {
   while (Date.now() < until) {
     await sleep(500);
     off = (await poses(page))[id];
-    if (error(off) > 1.0 && Math.hypot(off.x - before.x, off.y - before.y) > 3.0) break;
+    if (frameError(off) > 1.0 && Math.hypot(off.x - before.x, off.y - before.y) > 3.0) break;
   }
-  console.log(`  walked in the wrong frame to (${off.x.toFixed(2)}, ${off.y.toFixed(2)}), ${error(off).toFixed(2)} m from the truth`);
-  if (error(off) < 0.5) fail(`the 20 deg corruption left ${id} within ${error(off).toFixed(2)} m of the truth: nothing to fix`);
+  console.log(`  walked in the wrong frame to (${off.x.toFixed(2)}, ${off.y.toFixed(2)}), ${frameError(off).toFixed(2)} m ` +
+              `from where its own frame puts it`);
+  if (frameError(off) < 0.5) fail(`the 20 deg corruption moved ${id} only ${frameError(off).toFixed(2)} m: nothing to fix`);
   await page.screenshot({ path: path.join(o.out, 'console_corrupted.png') });
   // The operator's three clicks: the origin where the heading went wrong, the entity where the
-  // wrong frame puts it, and where it really is.
-  const t = truthAt(truth, off.stamp_s);
+  // wrong frame puts it, and where it belongs. The operator zooms in on the three first: at the
+  // whole map's scale a pixel is 5-6 cm, a degree at 3 m.
+  const right = uncorrupted(off);
+  await page.evaluate((pts) => {
+    const c = window.penaConsole;
+    const xs = pts.map((p) => p[0]), ys = pts.map((p) => p[1]);
+    const canvas = document.getElementById('map');
+    c.view.follow = '';
+    c.view.cx = (Math.min(...xs) + Math.max(...xs)) / 2;
+    c.view.cy = (Math.min(...ys) + Math.max(...ys)) / 2;
+    c.view.scale = 0.6 * Math.min(canvas.width / (Math.max(...xs) - Math.min(...xs) + 1),
+                                  canvas.height / (Math.max(...ys) - Math.min(...ys) + 1));
+    c.redraw();
+  }, [[before.x, before.y], [off.x, off.y], right]);
+  const scale = await page.evaluate(() => window.penaConsole.view.scale);
   await page.select('#rotate-entity', id);
   await page.click('#rotate');
   const acks = await page.evaluate(() => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length);
   await click(page, before.x, before.y);
   await click(page, off.x, off.y);
-  await click(page, t[0], t[1]);
+  await click(page, right[0], right[1]);
   await waitFor(page, (n) => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').length > n,
                 acks, 5000, 'no answer to the clicked rotation');
   const answer = await page.evaluate(() => window.penaConsole.state.messages.filter((m) => m.kind === 'ack').pop().text);
-  console.log(`  clicked rotation: ${answer}`);
-  // The entity's published poses from then on: within 0.3 m of the truth.
+  console.log(`  clicked rotation at ${scale.toFixed(0)} px/m: ${answer}`);
+  // The entity's published poses from then on: within 0.3 m of its own frame.
   await sleep(3000);
-  const errors = [];
+  const samples = [];
   for (let i = 0; i < 10; ++i) {
     await sleep(400);
-    errors.push(error((await poses(page))[id]));
+    const p = (await poses(page))[id];
+    const t = truthAt(truth, p.stamp_s), u = uncorrupted(p);
+    samples.push({ stamp: p.stamp_s, frame: frameError(p), truth: truthError(p), drift: Math.hypot(u[0] - t[0], u[1] - t[1]),
+                   from_origin: Math.hypot(p.x - before.x, p.y - before.y) });
   }
-  const worst = Math.max(...errors);
-  console.log(`  after the rotation: ${errors.map((e) => e.toFixed(2)).join(' ')} m from the truth (worst ${worst.toFixed(2)} m)`);
-  if (worst > 0.3) fail(`${id} is ${worst.toFixed(2)} m from the truth after the rotation (> 0.3 m)`);
+  const worst = Math.max(...samples.map((x) => x.frame));
+  const line = (key) => samples.map((x) => x[key].toFixed(2)).join(' ');
+  console.log(`  after the rotation (${samples[0].stamp.toFixed(1)}-${samples[samples.length - 1].stamp.toFixed(1)} s, ` +
+              `${line('from_origin').split(' ')[0]}-${line('from_origin').split(' ').pop()} m from the origin):`);
+  console.log(`    from its own frame: ${line('frame')} m (worst ${worst.toFixed(2)} m, limit 0.3 m)`);
+  console.log(`    from the truth:     ${line('truth')} m`);
+  console.log(`    its own drift:      ${line('drift')} m`);
+  if (worst > 0.3) fail(`${id} is ${worst.toFixed(2)} m from its own frame after the rotation (> 0.3 m)`);
   const listed = await page.evaluate(() => window.penaConsole.state.corrections.length);
   if (listed !== 2) fail(`${listed} corrections listed (expected 2)`);
+  await page.click('#fit');  // the whole picture again for the last screenshot
 }
 
 // Sends a request through the page's connection and waits for its ack.

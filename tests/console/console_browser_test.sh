@@ -23,6 +23,8 @@ export FASTRTPS_DEFAULT_PROFILES_FILE=$REPO/deploy/dds/pena-loopback.xml
 
 OUT=${PENA_CONSOLE_TEST_OUT:-$(mktemp -d /tmp/pena-console-test.XXXXXX)}
 mkdir -p "$OUT"
+# An old run's files in PENA_CONSOLE_TEST_OUT would name dead consoles' ports: gone first.
+rm -f "$OUT/console.port" "$OUT/console2.port"
 PIDS=()
 cleanup() {
   local pid
@@ -48,6 +50,10 @@ PIDS+=("$!")
   --operator-id second > "$OUT/console2.log" 2>&1 &
 PIDS+=("$!")
 for _ in $(seq 100); do [[ -s $OUT/console.port && -s $OUT/console2.port ]] && break; sleep 0.1; done
+if [[ ! -s $OUT/console.port || ! -s $OUT/console2.port ]]; then
+  echo "console_browser_test: pena-console wrote no port file in 10 s; see $OUT/console.log, $OUT/console2.log"
+  exit 1
+fi
 PORT=$(cat "$OUT/console.port")
 PORT2=$(cat "$OUT/console2.port")
 echo "pena-console on http://127.0.0.1:$PORT/ and http://127.0.0.1:$PORT2/ (DDS domain $DOMAIN)"

@@ -68,6 +68,8 @@ else
 fi
 
 "$BUILD/tools/pena/pena" simulate --scenario team --seed 1 --out "$OUT/mission" > "$OUT/simulate.log"
+# An old run's files in PENA_CONSOLE_TEST_OUT would name dead consoles' ports: gone first.
+rm -f "$OUT/post.port" "$OUT/building.port"
 "$GATEWAY" --generate-link-key "$OUT/link.key" > /dev/null
 GW_COMMON=(--link-key "$OUT/link.key" --budget-bit-s 8640 --duration-s 0 "${LINK_ARGS[@]}" "${GW_PROFILES[@]}")
 
@@ -87,6 +89,10 @@ PIDS+=("$!")
   "${PROFILES[@]}" --operator-id building > "$OUT/console-building.log" 2>&1 &
 PIDS+=("$!")
 for _ in $(seq 100); do [[ -s $OUT/post.port && -s $OUT/building.port ]] && break; sleep 0.1; done
+if [[ ! -s $OUT/post.port || ! -s $OUT/building.port ]]; then
+  echo "console_gateway_test: pena-console wrote no port file in 10 s; see $OUT/console-post.log, $OUT/console-building.log"
+  exit 1
+fi
 POST_PORT=$(cat "$OUT/post.port")
 BLD_PORT=$(cat "$OUT/building.port")
 echo "command post console on port $POST_PORT (DDS domain $POST_DOMAIN), building console on port $BLD_PORT (DDS domain $BLD_DOMAIN)"
