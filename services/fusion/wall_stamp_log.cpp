@@ -64,8 +64,9 @@ void WallStampLog::Append(const std::string& entity_id,
     std::snprintf(numbers, sizeof numbers, ",%lld,%.6f\n", static_cast<long long>(id), stamp_s);
     lines += entity_id + numbers;
   }
-  if (::write(fd_, lines.data(), lines.size()) != static_cast<ssize_t>(lines.size()) ||
-      ::fdatasync(fd_) != 0) {
+  // Into the kernel, the durability of the store's journal (JournalDurability::kFlush): a kill -9
+  // loses none, a power loss may lose what the journal loses too.
+  if (::write(fd_, lines.data(), lines.size()) != static_cast<ssize_t>(lines.size())) {
     throw std::runtime_error("cannot append to " + path_.string() + ": " + std::strerror(errno));
   }
   std::map<std::int64_t, double>& stamps = stamps_[entity_id];

@@ -3,8 +3,8 @@
 // the mission stamp of the delta (or snapshot) that first brought the wall. An operator's
 // rotation or translation from a stamp on moves the walls an entity mapped after that stamp
 // (docs/fusion-service.md), so a restarted fusion must know them as well as the one before it:
-// one CSV line per wall in STATE_DIR/wall_stamps.csv, written and synced before the delta is
-// applied. A torn last line (kill -9 while writing) is ignored.
+// one CSV line per wall in STATE_DIR/wall_stamps.csv, written (into the kernel, like the store's
+// journal: a kill -9 loses none) before the delta is applied. A torn last line is ignored.
 
 #include <cstdint>
 #include <filesystem>
@@ -24,8 +24,8 @@ class WallStampLog {
   WallStampLog(const WallStampLog&) = delete;
   WallStampLog& operator=(const WallStampLog&) = delete;
 
-  // Appends the walls' stamps (segment id, mission seconds) of one entity in one write and
-  // syncs; throws std::runtime_error if that fails.
+  // Appends the walls' stamps (segment id, mission seconds) of one entity in one write; throws
+  // std::runtime_error if that fails.
   void Append(const std::string& entity_id,
               const std::vector<std::pair<std::int64_t, double>>& walls);
   // Per entity, per segment id: the stamp first recorded (a wall recorded again keeps it).
