@@ -25,7 +25,9 @@ std::string Serialise(const pena_dds::Annotation& sample) {
   pena_dds::AnnotationPubSubType type;
   auto* data = const_cast<pena_dds::Annotation*>(&sample);
   SerializedPayload_t payload(type.getSerializedSizeProvider(data)());
-  if (!type.serialize(data, &payload)) throw std::runtime_error("the annotation does not serialise");
+  if (!type.serialize(data, &payload)) {
+    throw std::runtime_error("the annotation does not serialise");
+  }
   return std::string(reinterpret_cast<const char*>(payload.data), payload.length);
 }
 

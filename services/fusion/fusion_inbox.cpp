@@ -330,7 +330,8 @@ void FusionService::KeepWallsBefore(const std::string& entity_id, const Operator
   if (keep.segment_ids.empty()) return;
   const std::size_t count = keep.segment_ids.size();
   if (const fusion::FusionOutput output = Apply(std::move(keep)); !output.problem.empty()) {
-    spdlog::warn("operator correction {}: walls of {} mapped before {:.3f} s moved with the rest: {}",
+    spdlog::warn("operator correction {}: walls of {} mapped before {:.3f} s moved with the "
+                 "rest: {}",
                  record.correction_id, entity_id, record.from_stamp_s, output.problem);
     return;
   }

@@ -166,7 +166,9 @@ void FusionService::Startup() {
   if (annotation_writer_) {
     std::vector<pena_dds::Annotation> marks = annotation_log_->Latest();
     for (pena_dds::Annotation& mark : marks) annotation_writer_->Write(mark);
-    if (!marks.empty()) spdlog::info("{} operator marks published again from the journal", marks.size());
+    if (!marks.empty()) {
+      spdlog::info("{} operator marks published again from the journal", marks.size());
+    }
   }
   RefreshCorrectionContext();
   next_tick_ns_ = NowNs() + SecondsToNs(options_.tick_period_s);

@@ -89,8 +89,8 @@ class FusionService {
   // The wall stamps journalled before a restart, for the walls the recovered local maps hold.
   void RecoverWallStamps();
   // Journals the stamps of walls not stamped yet (before the delta or snapshot is applied).
-  void RecordWallStamps(const std::string& entity_id, const std::vector<line_map::LineSegment>& walls,
-                        double stamp_s);
+  void RecordWallStamps(const std::string& entity_id,
+                        const std::vector<line_map::LineSegment>& walls, double stamp_s);
   void Startup();
   void Dispatch(const Event& event);
   void Handle(const pena_dds::EntityPose& sample, const SampleMeta& meta);
