@@ -5,8 +5,8 @@
 // journal with syslog priorities under systemd, else to stderr, optionally also to a file.
 // Exits 0 on success, 1 on bad options or a failure, 2 on a DDS failure.
 #include <CLI/CLI.hpp>
-#include <spdlog/spdlog.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
