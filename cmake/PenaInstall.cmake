@@ -4,6 +4,22 @@
 # component, the Debian package it goes into (cmake/PenaPackage.cmake): dev (libpena-dev), tools
 # (pena-tools), services (pena-services). The system files of pena-services (systemd units,
 # /etc/pena) have absolute destinations and install only for the package (component system).
+#
+# Libraries and lib/cmake/pena go to CMAKE_INSTALL_LIBDIR (GNUInstallDirs). On a multiarch system
+# (Debian: the compiler reports CMAKE_LIBRARY_ARCHITECTURE, e.g. x86_64-linux-gnu) its default is
+# lib/<multiarch tuple> for every prefix, not only for /usr as GNUInstallDirs would choose: the
+# build tree is configured for /usr/local, and CPack installs that same tree under /usr, where
+# Debian wants /usr/lib/<tuple>. find_package searches <prefix>/lib/<tuple>/cmake too. A tree
+# configured before this rule, with GNUInstallDirs' "lib", moves once; -DCMAKE_INSTALL_LIBDIR=lib
+# given afterwards (or on the first configure) is kept.
+if(CMAKE_LIBRARY_ARCHITECTURE AND NOT PENA_INSTALL_LIBDIR_CHOSEN)
+  if(NOT DEFINED CMAKE_INSTALL_LIBDIR OR
+     (CMAKE_INSTALL_LIBDIR STREQUAL "lib" AND DEFINED _GNUInstallDirs_LAST_CMAKE_INSTALL_PREFIX))
+    set(CMAKE_INSTALL_LIBDIR lib/${CMAKE_LIBRARY_ARCHITECTURE} CACHE PATH
+        "Object code libraries (lib/<multiarch tuple> on a multiarch system)" FORCE)
+  endif()
+  set(PENA_INSTALL_LIBDIR_CHOSEN ON CACHE INTERNAL "CMAKE_INSTALL_LIBDIR's default was applied")
+endif()
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 

@@ -7,8 +7,21 @@
 # Each package also gets its copyright and changelog (component <group>_debian). The system
 # and *_debian components are EXCLUDE_FROM_ALL: `cmake --install` into a prefix never writes
 # /etc or /lib/systemd.
-set(PENA_PACKAGE_MAINTAINER "PeNa developers <pena@users.noreply.github.com>" CACHE STRING
-    "Maintainer field of the Debian packages")
+#
+# The Maintainer field (and the changelog's signature) is PENA_PACKAGE_MAINTAINER. The source tree
+# names its authors ("the PeNa authors", deploy/debian/copyright) but no address, so the default
+# is a placeholder under the reserved .invalid domain (RFC 2606: no mail can reach it): whoever
+# distributes the packages sets their own, -DPENA_PACKAGE_MAINTAINER="Name <address>".
+set(pena_placeholder_maintainer "PeNa authors <maintainer@pena.invalid>")
+set(PENA_PACKAGE_MAINTAINER "${pena_placeholder_maintainer}" CACHE STRING
+    "Maintainer field of the Debian packages: \"Name <address>\" of whoever distributes them")
+if(PENA_PACKAGE_MAINTAINER STREQUAL pena_placeholder_maintainer)
+  message(STATUS "Debian packages: Maintainer is the placeholder ${PENA_PACKAGE_MAINTAINER}; "
+                 "set -DPENA_PACKAGE_MAINTAINER=\"Name <address>\" to distribute them")
+elseif(NOT PENA_PACKAGE_MAINTAINER MATCHES "^[^<>]+ <[^<>@ ]+@[^<>@ ]+>$")
+  message(FATAL_ERROR "PENA_PACKAGE_MAINTAINER must be \"Name <address>\", got "
+                      "'${PENA_PACKAGE_MAINTAINER}'")
+endif()
 
 set(pena_deb_dir ${PROJECT_BINARY_DIR}/debian)
 set(pena_deb_src ${PROJECT_SOURCE_DIR}/deploy/debian)

@@ -204,7 +204,8 @@ class HealthReporter {
 
 // The loop, for either transport (UdpLink or TcpLink: Send, Receive).
 template <typename Transport>
-std::string Run(const RunnerOptions& options, Transport& link, const std::atomic<bool>& stop) {
+std::string Run(const RunnerOptions& options, Transport& link,
+                const std::function<bool()>& stop_requested) {
   InMemoryDomain memory;
   std::unique_ptr<DdsDomain> dds;
   if (options.dds) dds = std::make_unique<DdsDomain>(options.dds_options);
@@ -235,7 +236,7 @@ std::string Run(const RunnerOptions& options, Transport& link, const std::atomic
   double last_change_s = 0.0;
   std::uint64_t send_errors = 0;
   HealthReporter health(options.name, start_s);
-  while (!stop && (options.duration_s <= 0.0 || WallClockS() - start_s < options.duration_s)) {
+  while (!stop_requested() && (options.duration_s <= 0.0 || WallClockS() - start_s < options.duration_s)) {
     for (std::string& frame : link.Receive(0.005)) inbound.Send(std::move(frame), WallClockS());
     const double now_s = WallClockS();
     if (dds) dds->set_clock(now_s);
@@ -273,13 +274,14 @@ std::string Run(const RunnerOptions& options, Transport& link, const std::atomic
 
 }  // namespace
 
-std::string RunGateway(const RunnerOptions& options, const std::atomic<bool>& stop) {
+std::string RunGateway(const RunnerOptions& options,
+                       const std::function<bool()>& stop_requested) {
   if (options.tcp) {
     TcpLink tcp(TcpOptions(options));
-    return Run(options, tcp, stop);
+    return Run(options, tcp, stop_requested);
   }
   UdpLink udp(options.udp);
-  return Run(options, udp, stop);
+  return Run(options, udp, stop_requested);
 }
 
 }  // namespace pena::gateway

@@ -3,8 +3,8 @@
 // synthetic team or a receive-only in-memory domain), optional delay/loss/outage
 // emulation on the receive path (where the kernel lacks netem), and a JSON summary at the end.
 
-#include <atomic>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,7 +36,7 @@ struct RunnerOptions {
   std::string name = "gateway";      // for logs
 };
 
-// Runs until duration_s passes or `stop` is set; returns the JSON summary it wrote.
-std::string RunGateway(const RunnerOptions& options, const std::atomic<bool>& stop);
+// Runs until duration_s passes or `stop_requested()` is true; returns the JSON summary it wrote.
+std::string RunGateway(const RunnerOptions& options, const std::function<bool()>& stop_requested);
 
 }  // namespace pena::gateway

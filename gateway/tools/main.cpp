@@ -1,26 +1,23 @@
 // pena-gateway: bridges a local domain across a bandwidth-limited link (docs/gateway.md).
 // The local domain is a DDS domain (--dds-domain, --role), a synthetic team (--team N) or
 // receive-only. The link is sealed with --link-key FILE, or open with --insecure-link
-// (docs/security.md).
+// (docs/security.md). Logs like the other daemons (services/common/logging.hpp): to the
+// journal with syslog priorities under systemd, else to stderr, optionally also to a file.
+// Exits 0 on success, 1 on bad options or a failure, 2 on a DDS failure.
 #include <CLI/CLI.hpp>
-#include <spdlog/spdlog.h>
 
-#include <atomic>
-#include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <set>
 
-#include "crash_report.hpp"
+#include "daemon_main.hpp"
 #include "dds_participant.hpp"
 #include "link_runner.hpp"
+#include "signals.hpp"
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-
-void OnSignal(int /*signal*/) { g_stop = true; }
 
 // "host:port" into its parts; throws CLI::ValidationError naming the option.
 void SplitEndpoint(const std::string& text, const std::string& option, std::string* host,
@@ -70,18 +67,12 @@ void CheckKeyFlags(const KeyFlags& flags, const pena::gateway::RunnerOptions& op
   }
 }
 
-// Writes a new key for --generate-link-key; the exit status.
-int GenerateKey(const std::string& path) {
-  try {
-    const pena::gateway::LinkKey key = pena::gateway::GenerateLinkKey();
-    pena::gateway::WriteLinkKey(path, key);
-    std::printf("wrote link key %s (fingerprint %s); copy it to both gateways of the link\n",
-                path.c_str(), key.Fingerprint().c_str());
-    return EXIT_SUCCESS;
-  } catch (const std::exception& error) {
-    spdlog::error("pena-gateway: {}", error.what());
-    return EXIT_FAILURE;
-  }
+// Writes a new key for --generate-link-key; throws if the file cannot be written.
+void GenerateKey(const std::string& path) {
+  const pena::gateway::LinkKey key = pena::gateway::GenerateLinkKey();
+  pena::gateway::WriteLinkKey(path, key);
+  std::printf("wrote link key %s (fingerprint %s); copy it to both gateways of the link\n",
+              path.c_str(), key.Fingerprint().c_str());
 }
 
 // Registers every command-line option; the endpoints and outages are parsed after.
@@ -109,6 +100,14 @@ void AddOptions(CLI::App& app, pena::gateway::RunnerOptions& options, std::strin
   app.add_option("--emulate-outage", outages, "START:END seconds after start: drop everything received");
   app.add_option("--stats", options.stats_path, "write the JSON summary here");
   app.add_option("--name", options.name, "name in logs and the summary");
+}
+
+// Where the log goes besides stderr (the journal under systemd), and from which level.
+void AddLogOptions(CLI::App& app, pena::services::DaemonLogging& logging) {
+  app.add_option("--log-level", logging.level, "trace, debug, info, warn, error, critical or off")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}))
+      ->capture_default_str();
+  app.add_option("--log-file", logging.file, "also write the log to this file");
 }
 
 // The DDS command line: domain, profiles, role and its overrides.
@@ -192,34 +191,37 @@ int main(int argc, char** argv) {
   AddDdsOptions(app, options, dds_flags);
   KeyFlags key_flags;
   AddKeyOptions(app, options, key_flags);
+  pena::services::DaemonLogging logging{"info", {}};
+  AddLogOptions(app, logging);
   try {
     app.parse(argc, argv);
-    if (!key_flags.generate_file.empty()) return GenerateKey(key_flags.generate_file);
-    CheckKeyFlags(key_flags, options);
-    SplitEndpoint(bind, "--bind", &options.udp.bind_address, &options.udp.bind_port);
-    SplitEndpoint(peer, "--peer", &options.udp.peer_address, &options.udp.peer_port);
-    for (const std::string& outage : outages) {
-      double from = 0.0;
-      double to = 0.0;
-      if (std::sscanf(outage.c_str(), "%lf:%lf", &from, &to) != 2 || !(to > from)) {
-        throw CLI::ValidationError("--emulate-outage", "expected START:END with END > START, got " + outage);
+    if (key_flags.generate_file.empty()) {
+      CheckKeyFlags(key_flags, options);
+      SplitEndpoint(bind, "--bind", &options.udp.bind_address, &options.udp.bind_port);
+      SplitEndpoint(peer, "--peer", &options.udp.peer_address, &options.udp.peer_port);
+      for (const std::string& outage : outages) {
+        double from = 0.0;
+        double to = 0.0;
+        if (std::sscanf(outage.c_str(), "%lf:%lf", &from, &to) != 2 || !(to > from)) {
+          throw CLI::ValidationError("--emulate-outage", "expected START:END with END > START, got " + outage);
+        }
+        options.emulate_outages.emplace_back(from, to);
       }
-      options.emulate_outages.emplace_back(from, to);
+      ApplyDdsFlags(app, dds_flags, options);
     }
-    ApplyDdsFlags(app, dds_flags, options);
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
   }
   options.link.compress = !no_compress;
-  std::signal(SIGINT, OnSignal);
-  std::signal(SIGTERM, OnSignal);
-  pena::services::InstallCrashReport("pena-gateway");
-  try {
-    if (!key_flags.key_file.empty()) options.link.key = pena::gateway::ReadLinkKey(key_flags.key_file);
-    std::fputs(pena::gateway::RunGateway(options, g_stop).c_str(), stdout);
-  } catch (const std::exception& error) {
-    spdlog::error("pena-gateway: {}", error.what());
-    return EXIT_FAILURE;
-  }
-  return EXIT_SUCCESS;
+  return pena::services::RunDaemon(
+      "pena-gateway", [&] { return logging; },
+      [&] {
+        if (!key_flags.generate_file.empty()) {
+          GenerateKey(key_flags.generate_file);
+          return EXIT_SUCCESS;
+        }
+        if (!key_flags.key_file.empty()) options.link.key = pena::gateway::ReadLinkKey(key_flags.key_file);
+        std::fputs(pena::gateway::RunGateway(options, pena::services::StopRequested).c_str(), stdout);
+        return EXIT_SUCCESS;
+      });
 }

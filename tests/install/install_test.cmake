@@ -1,8 +1,12 @@
 # Install.ExternalProjectRunsLaserOdometry (cmake -P): installs this build into a fresh prefix,
 # configures and builds tests/install/consumer against it with find_package(pena), and runs it on
 # the first 200 scans of LOG. Everything happens in one mktemp directory, removed at the end.
-# -DBUILD_DIR=... -DCONSUMER_DIR=... -DLOG=... [-DCXX_COMPILER=...] [-DEXPECT_TOOLS=ON]
+# -DBUILD_DIR=... -DCONSUMER_DIR=... -DLOG=... -DLIBDIR=<CMAKE_INSTALL_LIBDIR of the build, e.g.
+# lib/x86_64-linux-gnu> [-DCXX_COMPILER=...] [-DEXPECT_TOOLS=ON]
 # [-DEXPECT_SERVICES=ON] (check that bin/pena, the daemons and share/pena were installed too)
+if(NOT LIBDIR)
+  message(FATAL_ERROR "-DLIBDIR=<the build's CMAKE_INSTALL_LIBDIR> is required")
+endif()
 execute_process(COMMAND mktemp -d -t pena-install-test.XXXXXX
                 OUTPUT_VARIABLE work OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
 if(rc)
@@ -21,8 +25,8 @@ function(step what)
 endfunction()
 
 step("install" ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${work}/prefix")
-set(expected lib/cmake/pena/penaConfig.cmake lib/cmake/pena/penaConfigVersion.cmake
-             include/pena/odometry/laser_odometry.hpp)
+set(expected ${LIBDIR}/cmake/pena/penaConfig.cmake ${LIBDIR}/cmake/pena/penaConfigVersion.cmake
+             ${LIBDIR}/libpena_odometry.a include/pena/odometry/laser_odometry.hpp)
 if(EXPECT_TOOLS)
   list(APPEND expected bin/pena)
 endif()

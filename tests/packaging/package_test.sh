@@ -4,10 +4,12 @@
 # demo from the installed binaries and configs only (the systemd units' command lines started by
 # hand, as their user, with the unit's environment: no systemd here), compares its report with
 # the same lockstep demo run from the build tree (deploy/demo/run-team.sh), smoke-starts
-# pena-console and pena-gateway from their units, and purges the packages (also on failure),
-# checking that the machine is as before.
+# pena-console and pena-gateway from their units, builds tests/install/consumer against the
+# installed libpena-dev (find_package(pena) with no hint), and purges the packages (also on
+# failure), checking that the machine is as before.
 #
-#   package_test.sh BUILD_DIR
+#   package_test.sh BUILD_DIR LIBDIR LOG   (LIBDIR: the build's CMAKE_INSTALL_LIBDIR, e.g.
+#   lib/x86_64-linux-gnu; LOG: a CARMEN log the consumer runs on)
 #
 # Needs root (dpkg). Exits 77 (skipped) when not root or when PeNa packages, the pena user or
 # /etc/pena are already on the machine: the test would change what it must leave alone.
@@ -15,7 +17,9 @@
 set -euo pipefail
 
 REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-BUILD=$(realpath "${1:?usage: package_test.sh BUILD_DIR}")
+BUILD=$(realpath "${1:?usage: package_test.sh BUILD_DIR LIBDIR LOG}")
+LIBDIR=${2:?usage: package_test.sh BUILD_DIR LIBDIR LOG}
+LOG=${3:?usage: package_test.sh BUILD_DIR LIBDIR LOG}
 PACKAGES=(pena-services pena-tools libpena-dev)
 UNITS=/lib/systemd/system
 TEAM_RATE=5
@@ -70,7 +74,7 @@ cleanup() {
     for id in "${TEAM[@]}"; do rm -f "/etc/pena/entity/$id.conf"; done
     dpkg --purge "${PACKAGES[@]}" > "$WORK/purge.log" 2>&1 || { cat "$WORK/purge.log"; status=1; }
     local left=()
-    for path in /etc/pena /var/lib/pena /usr/share/pena /usr/include/pena /usr/bin/pena \
+    for path in /etc/pena /var/lib/pena /usr/share/pena /usr/include/pena /usr/bin/pena "/usr/$LIBDIR/cmake/pena" \
                 /usr/bin/pena-entity "$UNITS/pena-fusion.service" "$UNITS/pena-entity@.service"; do
       [[ -e $path ]] && left+=("$path")
     done
@@ -111,6 +115,16 @@ dpkg-deb -f "${DEBS[0]}" Depends | grep -q adduser || fail "pena-services: no ad
 dpkg-deb -f "${DEBS[1]}" Depends | grep -q libc6 || fail "pena-tools: no shared-library dependencies"
 dpkg-deb -f "${DEBS[2]}" Depends | grep -q libeigen3-dev || fail "libpena-dev: no libeigen3-dev dependency"
 dpkg-deb -I "${DEBS[0]}" conffiles | grep -qx /etc/pena/fusion.conf || fail "pena-services: no conffiles"
+# libpena-dev: the libraries and the CMake package in the build's library directory (multiarch
+# on Debian: /usr/lib/x86_64-linux-gnu), nothing directly in /usr/lib unless that is it.
+dpkg-deb -c "${DEBS[2]}" | awk '{print $NF}' > "$WORK/libpena-dev.files"
+for file in "./usr/$LIBDIR/libpena_odometry.a" "./usr/$LIBDIR/cmake/pena/penaConfig.cmake"; do
+  grep -qx "$file" "$WORK/libpena-dev.files" || fail "libpena-dev has no $file"
+done
+if [[ $LIBDIR != lib ]] && grep -q '^\./usr/lib/[^/]*\.a$' "$WORK/libpena-dev.files"; then
+  fail "libpena-dev puts libraries directly in /usr/lib, not /usr/$LIBDIR"
+fi
+echo "libpena-dev: libraries and cmake/pena in /usr/$LIBDIR"
 for package in "${!DEBS[@]}"; do
   echo "${PACKAGES[$package]}: Depends: $(dpkg-deb -f "${DEBS[$package]}" Depends)"
 done
@@ -302,5 +316,14 @@ wait "$GATEWAY_PID" || { cat "$WORK/gateway.log"; fail "pena-gateway did not sto
 grep -q '"name"' "$WORK/gateway.log" || { cat "$WORK/gateway.log"; fail "pena-gateway wrote no summary"; }
 echo "pena-gateway: ran with the credential link key, stopped cleanly"
 PIDS=()
+
+step "find_package(pena) from the installed libpena-dev (tests/install/consumer)"
+cmake -S "$REPO/tests/install/consumer" -B "$WORK/consumer" -DCMAKE_BUILD_TYPE=Release \
+  > "$WORK/consumer.log" 2>&1 || { cat "$WORK/consumer.log"; fail "configure the consumer"; }
+grep -qx "pena_DIR:PATH=/usr/$LIBDIR/cmake/pena" "$WORK/consumer/CMakeCache.txt" ||
+  fail "the consumer found pena elsewhere: $(grep '^pena_DIR' "$WORK/consumer/CMakeCache.txt")"
+cmake --build "$WORK/consumer" > "$WORK/consumer.log" 2>&1 ||
+  { cat "$WORK/consumer.log"; fail "build the consumer"; }
+"$WORK/consumer/odometry_on_log" "$LOG" 200 || fail "the consumer on $LOG"
 
 step "passed; purging"
