@@ -28,7 +28,7 @@ relations (mean relation error).
 
   scripts/plan-localisation-benchmark.py [--build DIR] [--work DIR] [--buildings intel,aces,...]
       [--seeds N] [--modes start,global] [--jobs N] [--raw] [--corrected LOG]...
-      [--log RAW --truth CORRECTED]... [--json FILE] [-- extra pena localise options]
+      [--log RAW --truth CORRECTED]... [--json FILE] [--resume] [-- extra pena localise options]
 """
 import argparse
 import bisect
@@ -58,7 +58,12 @@ def datasets_dir():
     sys.exit("plan-localisation-benchmark: no datasets found (set PENA_DATASETS)")
 
 
-def run(cmd, log_path):
+RESUME = False  # --resume: a step whose output exists is not run again
+
+
+def run(cmd, log_path, output=None):
+    if RESUME and output is not None and Path(output).exists():
+        return
     with open(log_path, "w") as log:
         result = subprocess.run([str(c) for c in cmd], stdout=log, stderr=subprocess.STDOUT)
     if result.returncode != 0:
@@ -156,7 +161,7 @@ def localise(pena, log, lines, out, mode, start, extra):
     out.mkdir(parents=True, exist_ok=True)
     cmd = [pena, "localise", "--quiet", "--log", log, "--map", lines, "--out", out]
     cmd += ["--global"] if mode == "global" else ["--start", start]
-    run(cmd + list(extra), out / "run.log")
+    run(cmd + list(extra), out / "run.log", out / "summary.json")
 
 
 def start_arg(pose):
@@ -166,9 +171,9 @@ def start_arg(pose):
 def build_map(pena, name, corrected, work):
     out = work / name / "map"
     out.mkdir(parents=True, exist_ok=True)
-    run([pena, "map", "--quiet", "--log", corrected, "--out", out], out / "run.log")
+    run([pena, "map", "--quiet", "--log", corrected, "--out", out], out / "run.log", out / "lines.csv")
     truth = out / "corrected.tum"
-    run([pena, "export", "--log", corrected, "--tum", truth], out / "export.log")
+    run([pena, "export", "--log", corrected, "--tum", truth], out / "export.log", truth)
     return out / "lines.csv", read_tum(truth)
 
 
@@ -178,7 +183,7 @@ def perturbed_run(pena, name, corrected, lines, seed, modes, work, extra):
     log = out / "perturbed.clf"
     truth_path = out / "truth.tum"
     run([pena, "export", "--log", corrected, "--carmen", log, "--perturb-odometry", seed, "--tum", truth_path],
-        out / "export.log")
+        out / "export.log", truth_path)
     truth = read_tum(truth_path)
     results = {}
     for mode in modes:
@@ -276,6 +281,8 @@ def main():
     parser.add_argument("--log", action="append", default=[], help="a raw log (with --truth)")
     parser.add_argument("--truth", action="append", default=[], help="the corrected log of a --log")
     parser.add_argument("--json", help="also write the rows to this JSON file")
+    parser.add_argument("--resume", action="store_true",
+                        help="keep WORK and skip the steps whose outputs are there (an interrupted run)")
     argv = sys.argv[1:]
     extra = []
     if "--" in argv:
@@ -294,7 +301,10 @@ def main():
         sys.exit(f"plan-localisation-benchmark: {pena} is not built (bash scripts/setup.sh)")
     data = datasets_dir()
     work = Path(opts.work)
-    shutil.rmtree(work, ignore_errors=True)
+    global RESUME
+    RESUME = opts.resume
+    if not opts.resume:
+        shutil.rmtree(work, ignore_errors=True)
 
     corrected = [(n, data / "radish-corrected" / f"{n}-corrected.log.gz") for n in opts.buildings.split(",") if n]
     corrected += [(Path(c).name.split(".")[0], Path(c)) for c in opts.corrected]
