@@ -148,5 +148,23 @@ TEST(CliLocalise, AnUnknownSmootherSettingIsAClearError) {
   EXPECT_NE(run.err.find("smooth.nonsense"), std::string::npos) << run.err;
 }
 
+// Lost and found's outputs: the `lost` column of status.csv and `lost_intervals` in summary.json
+// (an office walk from its known start is never lost); a bad lost.* value is a clear error.
+TEST(CliLocalise, ReportsLostIntervalsAndRefusesBadLostOptions) {
+  const auto mission = FreshDir("loc_lost_sim");
+  ASSERT_EQ(RunPena("simulate --scenario office --seed 1 --out " + mission.string()).exit_code, 0);
+  const std::string inputs = "localise --quiet --log " + (mission / "ff1" / "sensors.penalog").string() +
+                             " --map " + (mission / "apriori.csv").string();
+  const auto out = FreshDir("loc_lost_out");
+  const PenaRun run = RunPena(inputs + " --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string status = ReadBytes(out / "status.csv");
+  EXPECT_NE(status.find(",ends_corrected,lost,uncertain,innovation_nees\n"), std::string::npos);
+  EXPECT_NE(ReadBytes(out / "summary.json").find("\"lost_intervals\": []"), std::string::npos);
+  const PenaRun bad = RunPena(inputs + " --out " + out.string() + " --set lost.region_growth=0.5");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("lost_and_found.region_growth must be >= 1, got 0.5"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace pena::testing

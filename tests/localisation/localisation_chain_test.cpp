@@ -210,14 +210,15 @@ struct OffStart {
     return scans_since_relocalised > 0 ? std::sqrt(sum_squared_m2 / scans_since_relocalised) : 1e9;
   }
 };
-OffStart RunFromWrongStart(int relocalise_after_rounds, const geometry::Pose2& offset, double start_stamp_s,
-                           int scans) {
+OffStart RunFromWrongStart(int relocalise_after_rounds, bool lost_and_found, const geometry::Pose2& offset,
+                           double start_stamp_s, int scans) {
   const sim::EntityRecording& entity = OfficeMission().entities.front();
   const sim::Scenario office = testing::OfficeScenario();
   const std::size_t start = StartAt(entity, start_stamp_s);
   const auto& first = std::get<sensors::GroundTruth>(entity.records[start]);
   LocalisationChainOptions options;
   options.relocalise_after_rounds = relocalise_after_rounds;
+  options.lost.enabled = lost_and_found;
   LocalisationChain chain(options, entity.kind, *office.apriori, geometry::Compose(first.world_from_body, offset),
                           first.stamp_s);
   OffStart out;
@@ -249,10 +250,23 @@ OffStart RunFromWrongStart(int relocalise_after_rounds, const geometry::Pose2& o
 // wall is drawn 0.3 m off, single scans are 0.2-0.6 m ahead with or without the pace check).
 TEST(LocalisationChain, ALostEntityInAMappedCorridorIsRelocalised) {
   const geometry::Pose2 offset{0.0, 3.0, 30.0 * kDeg};
-  const OffStart lost = RunFromWrongStart(0, offset, 152.0, 150);
+  const OffStart lost = RunFromWrongStart(0, false, offset, 152.0, 150);
   EXPECT_GT(std::hypot(lost.estimate.x_m - lost.truth.x_m, lost.estimate.y_m - lost.truth.y_m), 1.0);
   EXPECT_FALSE(lost.relocalised);
-  const OffStart found = RunFromWrongStart(3, offset, 152.0, 150);
+  const OffStart found = RunFromWrongStart(3, false, offset, 152.0, 150);
+  EXPECT_TRUE(found.relocalised);
+  EXPECT_GT(found.scans_since_relocalised, 50);
+  EXPECT_LT(found.RmsSinceRelocalisedM(), 0.3);
+  EXPECT_NEAR(found.estimate.x_m, found.truth.x_m, 0.6);
+  EXPECT_NEAR(found.estimate.y_m, found.truth.y_m, 0.3);
+  EXPECT_NEAR(geometry::NormalizeAngle(found.estimate.theta_rad - found.truth.theta_rad), 0.0, 3.0 * kDeg);
+}
+
+// The same entity with the chain's defaults: judged lost from the plan's evidence (rounds failing
+// where the plan explains little of the scan), searched for around where it was thought to be and
+// found again (LostAndFoundOptions), with no compass and no relocalisation option.
+TEST(LocalisationChain, AKidnappedEntityInAMappedCorridorIsFoundByDefault) {
+  const OffStart found = RunFromWrongStart(0, true, {0.0, 3.0, 30.0 * kDeg}, 152.0, 150);
   EXPECT_TRUE(found.relocalised);
   EXPECT_GT(found.scans_since_relocalised, 50);
   EXPECT_LT(found.RmsSinceRelocalisedM(), 0.3);

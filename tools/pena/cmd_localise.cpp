@@ -83,7 +83,7 @@ Run RunChain(const LocaliseArgs& args, io::LogSource& source, std::vector<geomet
     ++run.records;
     std::optional<localisation::LocalisedPose> pose = chain.Add(record);
     if (!pose) return;
-    if (pose->correction) run.rounds.push_back(*pose->correction);
+    if (pose->correction) run.rounds.push_back(*pose->correction), run.round_lost.push_back(pose->lost);
     if (pose->global) {
       ++run.global_attempts;
       if (pose->anchored) run.global = pose->global, run.global_stamp_s = pose->stamp_s;

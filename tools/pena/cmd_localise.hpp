@@ -35,6 +35,7 @@ struct LocaliseArgs {
 struct Run {
   std::vector<localisation::LocalisedPose> poses;
   std::vector<localisation::MapCorrection> rounds;
+  std::vector<char> round_lost;  // per round: judged lost after it (LocalisedPose::lost)
   std::optional<localisation::GlobalResult> global;  // the one that anchored the start
   double global_stamp_s = 0.0;
   int global_attempts = 0;
@@ -55,6 +56,17 @@ struct TruthErrors {
   double all_in_map_rms_m = 0.0;                            // including them
   std::vector<double> recovery_m;  // per re-entry: walked metres until the error is < 0.15 m
 };
+
+// A stretch of the walk judged lost: from the scan it was judged lost at to the scan it was found
+// at (none: never found), with the metres walked on odometry meanwhile.
+struct LostInterval {
+  double from_s = 0.0;
+  std::optional<double> to_s;
+  double walked_m = 0.0;
+};
+
+// The lost stretches of the run, in time order.
+std::vector<LostInterval> LostIntervals(const Run& run);
 
 // The rounds of the status timeline, counted.
 struct Counts {

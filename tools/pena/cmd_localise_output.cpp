@@ -46,8 +46,9 @@ void WriteStatusCsv(const std::filesystem::path& path, const Run& run) {
   std::ofstream out(path);
   out << "stamp,status,accepted,confidence,score,hits,points,virtual_points,constraint_ratio,"
          "degenerate,along_drop,window_xy_m,window_theta_deg,correction_x,correction_y,correction_theta_deg,"
-         "x,y,theta,recast,first_score,ends_corrected\n";
-  for (const localisation::MapCorrection& r : run.rounds) {
+         "x,y,theta,recast,first_score,ends_corrected,lost,uncertain,innovation_nees\n";
+  for (std::size_t i = 0; i < run.rounds.size(); ++i) {
+    const localisation::MapCorrection& r = run.rounds[i];
     const geometry::Pose2& c = r.correction;
     const geometry::Pose2& p = r.map_from_body_after;
     out << Fixed(r.stamp_s, 6) << ',' << localisation::ToString(r.status) << ',' << (r.accepted ? 1 : 0)
@@ -56,7 +57,8 @@ void WriteStatusCsv(const std::filesystem::path& path, const Run& run) {
         << ',' << Fixed(r.along_drop, 3) << ',' << Fixed(r.window_xy_m, 3) << ',' << Fixed(r.window_theta_rad / kDeg, 2) << ','
         << Fixed(c.x_m, 4) << ',' << Fixed(c.y_m, 4) << ',' << Fixed(c.theta_rad / kDeg, 3) << ','
         << Fixed(p.x_m, 4) << ',' << Fixed(p.y_m, 4) << ',' << Fixed(p.theta_rad, 5) << ','
-        << (r.recast ? 1 : 0) << ',' << Fixed(r.first_score, 3) << ',' << (r.ends_corrected ? 1 : 0) << '\n';
+        << (r.recast ? 1 : 0) << ',' << Fixed(r.first_score, 3) << ',' << (r.ends_corrected ? 1 : 0) << ','
+        << (run.round_lost[i] ? 1 : 0) << ',' << (r.uncertain ? 1 : 0) << ',' << Fixed(r.innovation_nees, 2) << '\n';
   }
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
 }
@@ -116,6 +118,23 @@ TruthErrors CompareWithTruth(const geometry::Trajectory& estimate, const geometr
   if (e.in_map > 0) e.in_map_rms_m = std::sqrt(sum_sq / n), e.in_map_heading_rms_deg = std::sqrt(heading_sq / n);
   if (all > 0) e.all_in_map_rms_m = std::sqrt(sum_all_sq / static_cast<double>(all));
   return e;
+}
+
+std::vector<LostInterval> LostIntervals(const Run& run) {
+  std::vector<LostInterval> out;
+  const localisation::LocalisedPose* last = nullptr;
+  for (const auto& p : run.poses) {
+    const bool open = !out.empty() && !out.back().to_s;
+    if (p.lost && !open) out.push_back({p.stamp_s, std::nullopt, 0.0});
+    else if (!p.lost && open) out.back().to_s = p.stamp_s;
+    if (p.lost && last) {
+      const geometry::Pose2& a = last->odometry.world_from_body;
+      const geometry::Pose2& b = p.odometry.world_from_body;
+      out.back().walked_m += std::hypot(b.x_m - a.x_m, b.y_m - a.y_m);
+    }
+    last = &p;
+  }
+  return out;
 }
 
 Counts CountRun(const Run& run) {
@@ -178,6 +197,17 @@ std::string OpeningsJson(const Run& run) {
   return json + "]";
 }
 
+// The lost stretches: [{"from": s, "to": s or null, "walked_m": m}, ...].
+std::string LostJson(const Run& run) {
+  std::string json = "[";
+  for (const LostInterval& lost : LostIntervals(run)) {
+    if (json.size() > 1) json += ", ";
+    json += "{\"from\": " + Fixed(lost.from_s, 6) + ", \"to\": " + (lost.to_s ? Fixed(*lost.to_s, 6) : "null") +
+            ", \"walked_m\": " + Fixed(lost.walked_m, 2) + "}";
+  }
+  return json + "]";
+}
+
 void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, const Run& run,
                   const std::optional<TruthErrors>& truth, const std::optional<TruthErrors>& truth_online) {
   const Counts c = CountRun(run);
@@ -188,6 +218,7 @@ void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, c
       << ", \"reacquired\": " << c.reacquired << ", \"ends_corrected\": " << c.ends_corrected
       << ", \"outside_rounds\": " << c.outside_rounds
       << ", \"outside_scans\": " << c.outside_scans << ", \"mean_confidence\": " << Fixed(c.mean_confidence, 3)
+      << ", \"lost_intervals\": " << LostJson(run)
       << ", \"global\": " << GlobalJson(run) << ", \"plan_shifts\": " << ShiftsJson(run)
       << ", \"plan_openings\": " << OpeningsJson(run)
       << ", \"truth\": " << TruthJson(truth);

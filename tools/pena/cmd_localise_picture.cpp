@@ -8,6 +8,10 @@
 #include "pena/viz/map_canvas.hpp"
 
 namespace pena::cli::localise {
+namespace {
+const cv::Scalar kLost{0, 200, 230};    // yellow: lost, searching the plan
+const cv::Scalar kFound{255, 0, 255};   // magenta: found again
+}  // namespace
 
 // Like the paper's Fig. 9: the plan, the path on it, stretches judged outside the plan in another
 // colour, re-acquisitions ringed; the true path (simulation) underneath.
@@ -38,8 +42,17 @@ cv::Mat Picture(const Run& run, const std::vector<geometry::Segment2>& plan, con
     const auto& b = run.poses[i];
     if (!a.anchored || !b.anchored) continue;
     const bool outside = b.status == localisation::MapStatus::kOutsideMap;
+    if (b.found) continue;  // the jump to where it was found is no walk
     canvas.DrawSegment({{a.map_from_body.x_m, a.map_from_body.y_m}, {b.map_from_body.x_m, b.map_from_body.y_m}},
-                       outside ? viz::colors::kRed : viz::colors::kBlue, 2);
+                       b.lost ? kLost : outside ? viz::colors::kRed : viz::colors::kBlue, b.lost ? 3 : 2);
+  }
+  bool any_lost = false, any_found = false;
+  for (const auto& p : run.poses) {
+    any_lost = any_lost || p.lost;
+    if (p.found) {
+      any_found = true;
+      canvas.DrawCircle({p.map_from_body.x_m, p.map_from_body.y_m}, 0.6, kFound, 2);
+    }
   }
   for (const auto& r : run.rounds) {
     if (r.status == localisation::MapStatus::kReacquired || r.status == localisation::MapStatus::kRelocalised) {
@@ -55,6 +68,8 @@ cv::Mat Picture(const Run& run, const std::vector<geometry::Segment2>& plan, con
   canvas.AddLegendEntry("path, matched on the plan", viz::colors::kBlue);
   canvas.AddLegendEntry("path, outside the plan", viz::colors::kRed);
   canvas.AddLegendEntry("re-acquired", viz::colors::kPurple);
+  if (any_lost) canvas.AddLegendEntry("path, lost (searching)", kLost);
+  if (any_found) canvas.AddLegendEntry("found again", kFound);
   if (!truth_m.empty()) canvas.AddLegendEntry("true path", viz::colors::kGreen);
   canvas.DrawScaleBar();
   canvas.DrawLegend();

@@ -18,7 +18,8 @@ namespace pena::cli::localise {
 // global.min_decide_return_fraction, global.min_decide_return_keyframes and global.min_travel_m
 // (GlobalTrackerOptions),
 // global.agreement_tolerance_m (GlobalLocaliserOptions), relocalise_after_rounds
-// (LocalisationChainOptions, plan rounds; 0 = off) and plan_adaptation.* (PlanAdaptationOptions);
+// (LocalisationChainOptions, plan rounds; 0 = off), plan_adaptation.* (PlanAdaptationOptions) and
+// lost.* (LostAndFoundOptions);
 // integer options are rounded; unknown names are errors. The options are validated by
 // MapLocaliser's constructor as usual.
 void ApplySettings(const std::vector<std::string>& settings, localisation::LocalisationChainOptions& chain) {
@@ -39,6 +40,10 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                      {"along_search_m", &o.along_search_m},
                      {"along_search_step_m", &o.along_search_step_m},
                      {"matcher.threshold_m", &o.matcher.threshold_m},
+                     {"uncertain_sigma_m", &o.uncertain_sigma_m},
+                     {"innovation_chi2", &o.innovation_chi2},
+                     {"match_sigma_m", &o.match_sigma_m},
+                     {"match_sigma_rad", &o.match_sigma_rad},
                      {"plan_adaptation.association_m", &o.plan_adaptation.association_m},
                      {"plan_adaptation.end_margin_m", &o.plan_adaptation.end_margin_m},
                      {"plan_adaptation.min_other_information", &o.plan_adaptation.min_other_information},
@@ -63,10 +68,18 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                      {"global.boundary_fraction", &chain.tracker.boundary_fraction},
                      {"global.agreement_tolerance_m", &chain.global.agreement_tolerance_m},
                      {"global.min_decide_return_fraction", &chain.tracker.min_decide_return_fraction},
-                     {"global.min_travel_m", &chain.tracker.min_travel_m}};
+                     {"global.min_travel_m", &chain.tracker.min_travel_m},
+                     {"lost.lost_explained_fraction", &chain.lost.lost_explained_fraction},
+                     {"lost.lost_sigma_m", &chain.lost.lost_sigma_m},
+                     {"lost.region_start_m", &chain.lost.region_start_m},
+                     {"lost.region_growth", &chain.lost.region_growth},
+                     {"lost.search_every_m", &chain.lost.search_every_m},
+                     {"lost.found_explained_fraction", &chain.lost.found_explained_fraction},
+                     {"lost.found_margin", &chain.lost.found_margin}};
   targets.ints = {{"min_hits", &o.min_hits},
                   {"outside_after_failures", &o.outside_after_failures},
                   {"oversample", &o.oversample},
+                  {"uncertain_every_scans", &o.uncertain_every_scans},
                   {"global.freeze_history_keyframes", &chain.tracker.freeze_history_keyframes},
                   {"global.freeze_ranking", &chain.tracker.freeze_ranking},
                   {"global.return_fit_keyframes", &chain.tracker.return_fit_keyframes},
@@ -78,15 +91,20 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                   {"plan_adaptation.openings.min_through_points", &o.plan_adaptation.openings.min_through_points},
                   {"plan_adaptation.openings.min_rounds", &o.plan_adaptation.openings.min_rounds},
                   {"plan_adaptation.ends.min_points", &o.plan_adaptation.ends.min_points},
-                  {"plan_adaptation.ends.min_ends", &o.plan_adaptation.ends.min_ends}};
+                  {"plan_adaptation.ends.min_ends", &o.plan_adaptation.ends.min_ends},
+                  {"lost.lost_after_rounds", &chain.lost.lost_after_rounds},
+                  {"lost.max_candidates", &chain.lost.max_candidates},
+                  {"lost.confirm_keyframes", &chain.lost.confirm_keyframes}};
   targets.flags = {{"global.answer_on_plan", &chain.tracker.answer_on_plan},
                    {"reacquire_pinned", &o.reacquire_pinned},
                    {"require_interior", &o.require_interior},
+                   {"uncertain_scans", &o.uncertain_scans},
                    {"along_search_failed", &o.along_search_failed},
                    {"along_search_unique", &o.along_search_unique},
                    {"plan_adaptation.enabled", &o.plan_adaptation.enabled},
                    {"plan_adaptation.openings.enabled", &o.plan_adaptation.openings.enabled},
-                   {"plan_adaptation.ends.enabled", &o.plan_adaptation.ends.enabled}};
+                   {"plan_adaptation.ends.enabled", &o.plan_adaptation.ends.enabled},
+                   {"lost.enabled", &chain.lost.enabled}};
   for (const std::string& text : settings) {
     if (text.starts_with(kSmooth)) continue;  // SmootherOptions, with --smooth
     if (text.starts_with(kOdometry)) {

@@ -112,7 +112,8 @@ struct GlobalLocaliser::Impl {
   // With a heading bound only its interval is searched, in as many sectors as it spans (at most
   // heading_sectors' width each).
   std::vector<PoseHypothesis> CoarseCandidates(const scan_matching::Points2& scan, long& scored,
-                                               const std::optional<HeadingBound>& bound) const {
+                                               const std::optional<HeadingBound>& bound,
+                                               const std::optional<SearchRegion>& region = std::nullopt) const {
     const double full_sector_rad = 2.0 * std::numbers::pi / options.heading_sectors;
     double first_rad = -std::numbers::pi, span_rad = 2.0 * std::numbers::pi;
     int sectors = options.heading_sectors;
@@ -125,7 +126,13 @@ struct GlobalLocaliser::Impl {
     const scan_matching::SearchWindow window{options.tile_size_m, options.tile_size_m, sector_rad,
                                              options.coarse_step_xy_m, options.coarse_step_theta_rad};
     std::vector<PoseHypothesis> candidates;
+    // A tile reaches into the region if its centre lies within the radius plus half its diagonal.
+    const double tile_reach_m = options.tile_size_m * std::numbers::sqrt2 / 2.0;
     for (const geometry::Pose2& tile : tile_centres) {
+      if (region && std::hypot(tile.x_m - region->centre_m.x(), tile.y_m - region->centre_m.y()) >
+                        region->radius_m + tile_reach_m) {
+        continue;
+      }
       for (int sector = 0; sector < sectors; ++sector) {
         const geometry::Pose2 centre{tile.x_m, tile.y_m, first_rad + (sector + 0.5) * sector_rad};
         const scan_matching::MatchResult match = coarse.MatchBranchAndBound(scan, centre, window);
@@ -233,15 +240,32 @@ GlobalResult GlobalLocaliser::Localise(const sensors::LaserScan& scan, int max_h
 
 GlobalResult GlobalLocaliser::Localise(const sensors::LaserScan& scan, int max_hypotheses,
                                        const std::optional<HeadingBound>& bound) const {
+  return Localise(scan, max_hypotheses, bound, std::nullopt);
+}
+
+bool GlobalLocaliser::Covers(const SearchRegion& region) const {
+  const Eigen::Vector2d low = impl_->box_low_m.array() - impl_->options.margin_m;
+  const Eigen::Vector2d high = impl_->box_high_m.array() + impl_->options.margin_m;
+  const Eigen::Vector2d far = (region.centre_m - low).cwiseAbs().cwiseMax((high - region.centre_m).cwiseAbs());
+  return far.norm() <= region.radius_m;
+}
+
+GlobalResult GlobalLocaliser::Localise(const sensors::LaserScan& scan, int max_hypotheses,
+                                       const std::optional<HeadingBound>& bound,
+                                       const std::optional<SearchRegion>& region) const {
   scan_matching::Points2 points = scan_matching::ScanToPoints(scan, impl_->options.min_range_m);
   std::erase_if(points, [&](const Eigen::Vector2d& p) { return p.norm() > impl_->options.max_range_m; });
   GlobalResult result;
   if (points.empty() || impl_->reference.empty()) return result;
-  for (const PoseHypothesis& candidate : impl_->CoarseCandidates(points, result.candidates_scored, bound)) {
+  for (const PoseHypothesis& candidate : impl_->CoarseCandidates(points, result.candidates_scored, bound, region)) {
     PoseHypothesis refined = impl_->Refine(points, candidate, impl_->options.fine_window);
     // The refinement may step a little past the bound's edge: such a pose is outside it.
     if (bound && std::abs(geometry::NormalizeAngle(refined.map_from_body.theta_rad - bound->heading_rad)) >
                      bound->tolerance_rad) {
+      continue;
+    }
+    if (region && std::hypot(refined.map_from_body.x_m - region->centre_m.x(),
+                             refined.map_from_body.y_m - region->centre_m.y()) > region->radius_m) {
       continue;
     }
     refined.agreement = impl_->Agreement(scan, refined.map_from_body).fraction();

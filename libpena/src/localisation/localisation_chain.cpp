@@ -66,6 +66,30 @@ struct LocalisationChain::Impl {
   std::unique_ptr<GlobalTracker> relocaliser;  // while lost (relocalise_after_rounds)
   int lost_rounds = 0;  // plan rounds in a row rejected with the window at its maximum
   std::optional<double> compass_heading_rad;  // the latest compass reading (mission frame)
+  // Lost and found once anchored, with its own whole-plan localiser (the a priori plan).
+  std::unique_ptr<GlobalLocaliser> lost_global;
+  std::unique_ptr<LostAndFound> lost;
+  double good_position_variance_m2 = 0.0;  // odometry x + y variance at the last accepted round
+
+  // The keyframe's evidence to the lost-and-found watch; found at a new place, the odometry frame
+  // is placed anew on the plan there and a forced round checks it.
+  void WatchEvidence(const sensors::LaserScan& scan, LocalisedPose& out) {
+    if (!lost) return;
+    const Eigen::Matrix3d& covariance = out.odometry.covariance;
+    const double variance_m2 = covariance(0, 0) + covariance(1, 1);
+    if (out.correction->accepted) good_position_variance_m2 = variance_m2;
+    const double sigma_m = std::sqrt(std::max(0.0, variance_m2 - good_position_variance_m2));
+    const geometry::Pose2& odom_from_body = out.odometry.world_from_body;
+    const LostStep step = lost->Update(scan, out.correction, odom_from_body, map.map_from_body(), sigma_m);
+    out.lost_search_radius_m = step.searched_radius_m;
+    out.found = step.found.has_value() || step.found_by_round;
+    if (out.found) good_position_variance_m2 = variance_m2;
+    if (step.found) {
+      map.Relocalise(geometry::Compose(*step.found, geometry::Inverse(odom_from_body)));
+      out.correction = map.Update(scan, out.odometry, true);
+    }
+    out.lost = lost->lost();
+  }
 
   // Counts the lost rounds; starts following global hypotheses after relocalise_after_rounds of
   // them and stops as soon as a plan round is accepted (the entity was re-acquired on its own).
@@ -163,7 +187,12 @@ LocalisationChain::LocalisationChain(const LocalisationChainOptions& options,
                               unknown ? geometry::Pose2{} : map_from_start, start_stamp_s),
       MapLocaliser(options.map, std::move(plan), geometry::Pose2{}), std::move(global), std::move(tracker),
       !unknown, start_stamp_s,
-      unknown && options.compass_tolerance_rad > 0.0 && HasCompass(options.odometry, kind), nullptr, 0, std::nullopt});
+      unknown && options.compass_tolerance_rad > 0.0 && HasCompass(options.odometry, kind), nullptr, 0, std::nullopt,
+      nullptr, nullptr, 0.0});
+  if (options.lost.enabled) {
+    impl_->lost_global = std::make_unique<GlobalLocaliser>(impl_->map.scanner().segments(), options.global);
+    impl_->lost = std::make_unique<LostAndFound>(options.lost, *impl_->lost_global);
+  }
 }
 
 LocalisationChain::~LocalisationChain() = default;
@@ -185,6 +214,7 @@ std::optional<LocalisedPose> LocalisationChain::Add(const sensors::SensorRecord&
     // Right after anchoring (or at the first scan) a round checks the start against the plan.
     const bool force = first || out.global.has_value();
     out.correction = impl_->map.Update(scan, out.odometry, force);
+    if (out.correction) impl_->WatchEvidence(scan, out);
     if (impl_->options.relocalise_after_rounds > 0 && out.correction) {
       impl_->WatchLost(*out.correction);
       if (impl_->relocaliser && estimate->reference_changed) impl_->TryRelocalise(record, scan, out);

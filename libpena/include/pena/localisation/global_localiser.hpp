@@ -4,6 +4,7 @@
 // with the virtual scan, which counts beams through a plan wall against a place and so separates
 // look-alike stretches of a corridor (docs/localisation.md, "Global localisation").
 
+#include <Eigen/Core>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -50,6 +51,13 @@ struct HeadingBound {
   double tolerance_rad = 0.0;  // > 0; pi or more: every heading
 };
 
+// Positions a whole-plan search may return: within radius_m of centre_m (map frame), e.g. around
+// the last pose a lost entity was known at. Only the tiles that reach into it are searched.
+struct SearchRegion {
+  Eigen::Vector2d centre_m = Eigen::Vector2d::Zero();
+  double radius_m = 0.0;  // > 0
+};
+
 // One candidate pose of the body on the plan.
 struct PoseHypothesis {
   geometry::Pose2 map_from_body;
@@ -92,6 +100,11 @@ class GlobalLocaliser {
   // The same searching only headings within `bound`; nullopt: every heading.
   GlobalResult Localise(const sensors::LaserScan& scan, int max_hypotheses,
                         const std::optional<HeadingBound>& bound) const;
+  // The same searching only positions within `region`; nullopt: the whole plan.
+  GlobalResult Localise(const sensors::LaserScan& scan, int max_hypotheses, const std::optional<HeadingBound>& bound,
+                        const std::optional<SearchRegion>& region) const;
+  // True if `region` covers the plan's bounding box (a search in it is a whole-plan search).
+  bool Covers(const SearchRegion& region) const;
   // One hypothesis checked at a new scan: fine match in verify_window, then beam agreement.
   PoseHypothesis Verify(const sensors::LaserScan& scan, const geometry::Pose2& map_from_body_guess) const;
 

@@ -11,6 +11,7 @@
 #include "pena/geometry/segment2.hpp"
 #include "pena/localisation/global_localiser.hpp"
 #include "pena/localisation/global_tracker.hpp"
+#include "pena/localisation/lost_and_found.hpp"
 #include "pena/localisation/map_localiser.hpp"
 #include "pena/odometry/laser_odometry.hpp"
 #include "pena/sensors/entity.hpp"
@@ -36,6 +37,9 @@ struct LocalisationChainOptions {
   // what plan rounds never re-acquire.
   int relocalise_after_rounds = 0;
   double relocalise_compass_tolerance_rad = 0.5235987755982988;  // winners this far off the compass are refused
+  // Lost and found once anchored: lost judged from evidence, then searched for in a growing
+  // region and over the whole plan (docs/localisation.md, "Lost and found").
+  LostAndFoundOptions lost;
 };
 
 // The estimate at one scan.
@@ -49,6 +53,9 @@ struct LocalisedPose {
   bool global_searched = false;                // a whole-plan search ran at this scan
   bool anchored = false;                  // the odometry frame is placed on the plan
   bool relocalising = false;              // lost: global hypotheses are followed (relocalise_after_rounds)
+  bool lost = false;                      // judged lost (LostAndFound) after this scan
+  bool found = false;                     // found again at this scan (placed anew or by a plan round)
+  std::optional<double> lost_search_radius_m;  // a lost search ran at this scan (0: whole plan)
 };
 
 // The chain for one entity. Not thread-safe.
