@@ -46,7 +46,7 @@ void WriteStatusCsv(const std::filesystem::path& path, const Run& run) {
   std::ofstream out(path);
   out << "stamp,status,accepted,confidence,score,hits,points,virtual_points,constraint_ratio,"
          "degenerate,along_drop,window_xy_m,window_theta_deg,correction_x,correction_y,correction_theta_deg,"
-         "x,y,theta,recast,first_score,ends_corrected,lost,uncertain,innovation_nees\n";
+         "x,y,theta,recast,first_score,ends_corrected,lost\n";
   for (std::size_t i = 0; i < run.rounds.size(); ++i) {
     const localisation::MapCorrection& r = run.rounds[i];
     const geometry::Pose2& c = r.correction;
@@ -58,7 +58,7 @@ void WriteStatusCsv(const std::filesystem::path& path, const Run& run) {
         << Fixed(c.x_m, 4) << ',' << Fixed(c.y_m, 4) << ',' << Fixed(c.theta_rad / kDeg, 3) << ','
         << Fixed(p.x_m, 4) << ',' << Fixed(p.y_m, 4) << ',' << Fixed(p.theta_rad, 5) << ','
         << (r.recast ? 1 : 0) << ',' << Fixed(r.first_score, 3) << ',' << (r.ends_corrected ? 1 : 0) << ','
-        << (run.round_lost[i] ? 1 : 0) << ',' << (r.uncertain ? 1 : 0) << ',' << Fixed(r.innovation_nees, 2) << '\n';
+        << (run.round_lost[i] ? 1 : 0) << '\n';
   }
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
 }

@@ -38,13 +38,10 @@ LostAndFound::LostAndFound(const LostAndFoundOptions& options, const GlobalLocal
   Validate(options_);
 }
 
-LostStep LostAndFound::Update(const sensors::LaserScan& scan, const std::optional<MapCorrection>& given,
+LostStep LostAndFound::Update(const sensors::LaserScan& scan, const std::optional<MapCorrection>& round,
                               const geometry::Pose2& odom_from_body, const geometry::Pose2& map_from_body,
                               double sigma_since_good_m) {
   LostStep step;
-  // A refused round between keyframes (MapLocaliserOptions::uncertain_scans) is no evidence: it
-  // ran because the odometry was unsure, and the keyframe rounds judge the place.
-  const std::optional<MapCorrection>& round = given && given->uncertain && !given->accepted ? std::nullopt : given;
   if (last_odom_) walked_m_ += std::hypot(odom_from_body.x_m - last_odom_->x_m, odom_from_body.y_m - last_odom_->y_m);
   last_odom_ = odom_from_body;
   if (!options_.enabled) return step;

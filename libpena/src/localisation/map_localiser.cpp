@@ -34,11 +34,6 @@ void Validate(const MapLocaliserOptions& o) {
   Require(o.recast_min_rad > 0.0, "recast_min_rad", "> 0 rad", o.recast_min_rad);
   Require(o.along_search_m >= 0.0, "along_search_m", ">= 0 m", o.along_search_m);
   Require(o.along_search_step_m > 0.0, "along_search_step_m", "> 0 m", o.along_search_step_m);
-  Require(o.uncertain_sigma_m > 0.0, "uncertain_sigma_m", "> 0 m", o.uncertain_sigma_m);
-  Require(o.uncertain_every_scans >= 1, "uncertain_every_scans", ">= 1 scans", o.uncertain_every_scans);
-  Require(o.innovation_chi2 > 0.0, "innovation_chi2", "> 0", o.innovation_chi2);
-  Require(o.match_sigma_m > 0.0, "match_sigma_m", "> 0 m", o.match_sigma_m);
-  Require(o.match_sigma_rad > 0.0, "match_sigma_rad", "> 0 rad", o.match_sigma_rad);
   ValidatePlanAdaptationOptions(o.plan_adaptation);
 }
 
@@ -111,28 +106,6 @@ MapCorrection MapLocaliser::Impl::Round(const sensors::LaserScan& scan,
     round.accepted = false;
     round.correction = {};
   }
-  if (prior_covariance) {
-    round.uncertain = true;
-    if (round.accepted) {
-      // The innovation gate: the correction against the odometry's spread plus the match's own.
-      const geometry::Pose2& c = round.correction;
-      const geometry::Pose2 after = geometry::Compose(round.map_from_body_before, c);
-      const Eigen::Vector3d innovation(after.x_m - round.map_from_body_before.x_m,
-                                       after.y_m - round.map_from_body_before.y_m, c.theta_rad);
-      Eigen::Matrix3d s = *prior_covariance;
-      s.diagonal() += Eigen::Vector3d(options.match_sigma_m * options.match_sigma_m,
-                                      options.match_sigma_m * options.match_sigma_m,
-                                      options.match_sigma_rad * options.match_sigma_rad);
-      round.innovation_nees = innovation.dot(s.inverse() * innovation);
-      if (round.innovation_nees > options.innovation_chi2) round.accepted = false, round.correction = {};
-    }
-    if (!round.accepted) {
-      // A refused round between keyframes changes nothing: the keyframe rounds judge the place.
-      round.map_from_body_after = round.map_from_body_before;
-      round.status = status;
-      return round;
-    }
-  }
   const double walked_m = distance_m;  // since the round before (Conclude resets it)
   Conclude(odom_from_body, round);
   if (round.accepted) Learn(real, round, walked_m);
@@ -176,7 +149,7 @@ MapLocaliser::MapLocaliser(const MapLocaliserOptions& options, std::vector<geome
   PlanAdaptation adaptation(options.plan_adaptation, plan);
   impl_ = std::make_unique<Impl>(Impl{options, VirtualScanner(std::move(plan), options.scanner),
                                       std::move(adaptation), map_from_odom, MapStatus::kUnknown, options.window, 0, 0.0,
-                                      std::nullopt, map_from_odom, false, 0, Eigen::Matrix3d::Zero(), std::nullopt});
+                                      std::nullopt, map_from_odom, false});
 }
 
 MapLocaliser::~MapLocaliser() = default;
@@ -186,46 +159,12 @@ MapLocaliser& MapLocaliser::operator=(MapLocaliser&&) noexcept = default;
 std::optional<MapCorrection> MapLocaliser::Update(const sensors::LaserScan& scan,
                                                   const odometry::OdometryEstimate& estimate,
                                                   bool force) {
-  Impl& m = *impl_;
-  m.pose = MapFromBody(estimate.world_from_body);
-  m.Accumulate(estimate.world_from_body);
-  ++m.scans_since_round;
+  impl_->pose = MapFromBody(estimate.world_from_body);
+  impl_->Accumulate(estimate.world_from_body);
+  if (!estimate.reference_changed && !force && !impl_->options.every_scan) return std::nullopt;
   const bool matched = estimate.status == odometry::MatchStatus::kMatched ||
                        estimate.status == odometry::MatchStatus::kFirst;
-  const bool keyframe = estimate.reference_changed || force || m.options.every_scan;
-  m.prior_covariance.reset();
-  if (!keyframe) {
-    if (!m.options.uncertain_scans || m.status == MapStatus::kUnknown ||
-        m.scans_since_round < m.options.uncertain_every_scans) {
-      return std::nullopt;
-    }
-    // The odometry's spread since the last accepted round, turned into the map frame.
-    const Eigen::Matrix3d grown = estimate.covariance - m.good_covariance;
-    const double c = std::cos(m.map_from_odom.theta_rad), s = std::sin(m.map_from_odom.theta_rad);
-    Eigen::Matrix3d rotation;
-    rotation << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
-    Eigen::Matrix3d prior = rotation * (0.5 * (grown + grown.transpose())) * rotation.transpose();
-    prior.diagonal() = prior.diagonal().cwiseMax(0.0);
-    const double sigma_m = std::sqrt(prior(0, 0) + prior(1, 1));
-    const bool unsure = !matched || estimate.gated || estimate.refused || sigma_m >= m.options.uncertain_sigma_m;
-    if (!unsure) return std::nullopt;
-    m.prior_covariance = prior;
-    // The window covers 3 sigma of the spread (full extents), within the largest window.
-    const scan_matching::SearchWindow kept = m.window;
-    m.window.size_x_m = std::clamp(6.0 * std::sqrt(prior(0, 0)), kept.size_x_m, m.options.max_window.size_x_m);
-    m.window.size_y_m = std::clamp(6.0 * std::sqrt(prior(1, 1)), kept.size_y_m, m.options.max_window.size_y_m);
-    m.window.size_theta_rad =
-        std::clamp(6.0 * std::sqrt(prior(2, 2)), kept.size_theta_rad, m.options.max_window.size_theta_rad);
-    MapCorrection round = m.Round(scan, estimate.world_from_body, true);
-    if (!round.accepted) m.window = kept;
-    else m.good_covariance = estimate.covariance;
-    m.scans_since_round = 0;
-    return round;
-  }
-  m.scans_since_round = 0;
-  MapCorrection round = m.Round(scan, estimate.world_from_body, !matched || estimate.gated);
-  if (round.accepted) m.good_covariance = estimate.covariance;
-  return round;
+  return impl_->Round(scan, estimate.world_from_body, !matched || estimate.gated);
 }
 
 geometry::Pose2 MapLocaliser::MapFromBody(const geometry::Pose2& odom_from_body) const {
@@ -242,7 +181,6 @@ void MapLocaliser::Reset(const geometry::Pose2& map_from_odom) {
   impl_->distance_m = 0.0;
   impl_->window = impl_->options.window;
   impl_->pose = map_from_odom;
-  impl_->good_covariance.setZero();
 }
 
 void MapLocaliser::Relocalise(const geometry::Pose2& map_from_odom) {

@@ -4,7 +4,6 @@
 // its judgement, re-casting and the search along a corridor). Internal to libpena.
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -43,10 +42,6 @@ struct MapLocaliser::Impl {
   // The pose on the plan at the last scan (the output).
   geometry::Pose2 pose;
   bool relocalised = false;  // Relocalise was called: the next round says so
-  int scans_since_round = 0;
-  Eigen::Matrix3d good_covariance = Eigen::Matrix3d::Zero();  // odometry covariance at the last accepted round
-  // For an uncertain round: the odometry's spread since the last accepted round, map frame.
-  std::optional<Eigen::Matrix3d> prior_covariance;
 
   // Real returns in the body (laser) frame within the usable range band.
   scan_matching::Points2 RealPoints(const sensors::LaserScan& scan) const {

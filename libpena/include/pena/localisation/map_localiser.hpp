@@ -50,18 +50,6 @@ struct MapLocaliserOptions {
   bool reacquire_pinned = true;     // a re-acquisition needs a place pinned in every direction
   bool require_interior = true;     // an optimum on the window's x or y edge fails the round
   bool every_scan = false;          // a round at every scan, not only at reference changes
-  // Rounds between keyframes where the odometry is uncertain: a scan it could not match or matched
-  // against its prior's gate, or whose position sigma since the last accepted round is at least
-  // uncertain_sigma_m; at most one per uncertain_every_scans scans. Such a round searches a window
-  // of at least 3 sigma of that spread and is taken only if its correction passes the innovation
-  // gate: squared Mahalanobis distance under the spread plus the match's own (match_sigma_m,
-  // match_sigma_rad) at most innovation_chi2 (chi-square, 3 degrees of freedom).
-  bool uncertain_scans = false;     // off by default: measured in docs/localisation.md
-  double uncertain_sigma_m = 0.25;
-  int uncertain_every_scans = 2;
-  double innovation_chi2 = 11.34;   // 99 % for 3 degrees of freedom
-  double match_sigma_m = 0.05;
-  double match_sigma_rad = 0.017453292519943295;  // 1 deg
   VirtualScannerOptions scanner;
   PlanAdaptationOptions plan_adaptation;  // walls measured off the drawing are moved (plan_adaptation.hpp)
 };
@@ -97,8 +85,6 @@ struct MapCorrection {
   bool recast = false;        // judged again where a search put it (recast_min_m, along_search_m)
   double first_score = 0.0;   // eq. 2 of the first search (= score when not recast)
   bool ends_corrected = false;  // moved back by what the plan's free wall ends agreed on
-  bool uncertain = false;       // a round between keyframes where the odometry was uncertain
-  double innovation_nees = 0.0; // uncertain rounds: the correction's squared Mahalanobis distance
 };
 
 // Matches keyframes of one entity's laser odometry against an a priori plan. Not thread-safe.
