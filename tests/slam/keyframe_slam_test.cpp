@@ -85,7 +85,12 @@ struct DriftedLoop {
   double worst_m = 0.0;           // corrected, anywhere
 };
 
-DriftedLoop RunDriftedLoop(const SlamOptions& options) {
+// The odometry turns `heading_drift_rad` too far per 0.1 m step, and slips `slip_m` forward at
+// scan kSlipScan (x = 1 m on the second lap, 33 s).
+constexpr std::size_t kSlipScan = 330;
+
+DriftedLoop RunDriftedLoop(const SlamOptions& options, double heading_drift_rad = 0.0006,
+                           double slip_m = 0.0) {
   const sim::LaserRaycaster raycaster(CorridorLoop(), 3.0);
   const std::vector<Pose2> truth = Walk(1.3);
   KeyframeSlam slam(options);
@@ -94,7 +99,8 @@ DriftedLoop RunDriftedLoop(const SlamOptions& options) {
   for (std::size_t i = 0; i < truth.size(); ++i) {
     if (i > 0) {
       Pose2 motion = geometry::Between(truth[i - 1], truth[i]);
-      motion.theta_rad += 0.0006;
+      if (i == kSlipScan) motion.x_m += slip_m;
+      motion.theta_rad += heading_drift_rad;
       odometry = geometry::Compose(odometry, motion);
     }
     run.odometry_error_m = Distance(odometry, truth[i]);
@@ -143,14 +149,44 @@ TEST(KeyframeSlam, ClosureRecordsMeasureTheTrueRelativePose) {
   EXPECT_GT(worst_prior_m, 0.3);  // the first closure corrected the drift
 }
 
-// Why reject_window_edge is off by default: at the revisit the drifted heading puts the match on
-// the window's heading edge, and refusing such matches leaves this loop open.
-TEST(KeyframeSlam, RejectingWindowEdgeMatchesLeavesADriftedLoopOpen) {
-  SlamOptions options;
-  options.reject_window_edge = true;
-  const DriftedLoop run = RunDriftedLoop(options);
-  EXPECT_EQ(run.counts.loop_closures, 0);
-  EXPECT_GT(run.final_m, 1.0);
+// At the revisit the drifted heading (11 deg) puts the best pose on the 5 deg window's heading
+// edge: the heading search is widened, and without room to widen the loop stays open.
+TEST(KeyframeSlam, AHeadingDriftBeyondTheWindowIsFoundByAWiderHeadingSearch) {
+  SlamOptions no_room;
+  no_room.loop_window_rad_per_m = 0.0;
+  no_room.loop_window_max_rad = no_room.loop_window_rad;
+  const DriftedLoop narrow = RunDriftedLoop(no_room);
+  EXPECT_EQ(narrow.counts.loop_closures, 0);
+  EXPECT_GT(narrow.final_m, 1.0);
+  const DriftedLoop widened = RunDriftedLoop({});
+  EXPECT_GT(widened.counts.loop_closures, 0);
+  EXPECT_LT(widened.final_m, 0.15);
+}
+
+// Odometry that slips 1 m forward along the corridor on the second lap, heading kept: with a
+// 0.2 m window each revisit after the slip has its best pose on the position edge, and such a
+// match (a cut-off slope; in a corridor, often an alias) is refused rather than closed 0.2 m at a
+// time. A window that holds the slip closes the loop.
+TEST(KeyframeSlam, RefusesAMatchOnThePositionEdgeOfTheWindow) {
+  const auto after_slip = [](const DriftedLoop& run) {
+    long kept = 0;
+    for (const LoopClosureRecord& c : run.closures) kept += c.kept && c.stamp_s > 0.1 * kSlipScan;
+    return kept;
+  };
+  SlamOptions narrow_window;
+  narrow_window.loop_window_per_m = 0.0;
+  narrow_window.loop_window_max_m = narrow_window.loop_window_m;
+  const DriftedLoop narrow = RunDriftedLoop(narrow_window, 0.0, 0.4);
+  EXPECT_GT(narrow.odometry_error_m, 0.35);
+  EXPECT_GT(narrow.counts.loop_checks, 10);
+  EXPECT_EQ(after_slip(narrow), 0);
+  EXPECT_GT(narrow.final_m, 0.35);
+  SlamOptions wide_window = narrow_window;
+  wide_window.loop_window_m = 1.5;
+  wide_window.loop_window_max_m = 1.5;
+  const DriftedLoop wide = RunDriftedLoop(wide_window, 0.0, 0.4);
+  EXPECT_GT(after_slip(wide), 0);
+  EXPECT_LT(wide.final_m, 0.5 * narrow.final_m);
 }
 
 TEST(KeyframeSlam, KeepsTheOdometryWhenNothingIsRevisited) {

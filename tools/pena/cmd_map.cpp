@@ -184,7 +184,7 @@ void RunMap(const MapArgs& args) {
   run.map = line_map::LineMap(map_options);
   if (args.bent_scans != "off") run.leveller.emplace();  // options checked before the first pass
   // A bad --set slam.* is an error whether or not the SLAM runs (a trajectory, logged poses).
-  (void)SlamOptionsOf(args, sensors::EntityKind::kRobot);
+  (void)SlamOptionsOf(args);
   if (!args.trajectory.empty()) {
     trajectory = io::ReadTum(args.trajectory);
     if (trajectory.empty()) throw std::runtime_error(args.trajectory + ": no poses");

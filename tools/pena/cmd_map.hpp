@@ -43,9 +43,9 @@ struct MapArgs {
 odometry::LaserOdometryOptions OdometryOptionsOf(const MapArgs& args);
 // The entity's chain that gives the poses: those odometry options, without its line map.
 pipeline::EntityPipelineOptions ChainOptionsOf(const MapArgs& args);
-// The SLAM's options for a log of entities of `kind` (--set slam.NAME=VALUE applied, validated);
-// throws std::runtime_error or std::invalid_argument naming a bad setting.
-slam::SlamOptions SlamOptionsOf(const MapArgs& args, sensors::EntityKind kind);
+// The SLAM's options (--set slam.NAME=VALUE applied, validated); throws std::runtime_error or
+// std::invalid_argument naming a bad setting.
+slam::SlamOptions SlamOptionsOf(const MapArgs& args);
 
 // What the pass over the log produced.
 struct MapRun {

@@ -48,7 +48,6 @@ SettingTargets SlamTargets(slam::SlamOptions& o) {
                      {"max_loop_chi2", &o.max_loop_chi2}};
   targets.ints = {{"submap_keyframes", &o.submap_keyframes},
                   {"loop_check_every", &o.loop_check_every}};
-  targets.flags = {{"reject_window_edge", &o.reject_window_edge}};
   return targets;
 }
 
@@ -75,12 +74,8 @@ pipeline::EntityPipelineOptions ChainOptionsOf(const MapArgs& args) {
   return options;
 }
 
-slam::SlamOptions SlamOptionsOf(const MapArgs& args, sensors::EntityKind kind) {
+slam::SlamOptions SlamOptionsOf(const MapArgs& args) {
   slam::SlamOptions options;
-  // People's odometry heading is held by the compass, so a closure needs no heading correction
-  // at the window's edge, and corridor matches there are aliases (office seed 6: 2.68 -> 0.12 m
-  // SLAM RMSE). Robots keep edge matches: a drifted heading is caught there (intel, docs/slam.md).
-  options.reject_window_edge = kind == sensors::EntityKind::kHuman;
   const SettingTargets targets = SlamTargets(options);
   for (const std::string& text : args.odometry_settings) {
     if (!IsSlamSetting(text)) continue;
@@ -130,7 +125,7 @@ std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run
   pipeline::EntityPipeline chain(ChainOptionsOf(args), kind,
                                  description.entity_id.empty() ? "entity" : description.entity_id,
                                  StartPoseOf(read_ahead, *source).world_from_body, stamp_s);
-  slam::KeyframeSlam slam(SlamOptionsOf(args, kind));
+  slam::KeyframeSlam slam(SlamOptionsOf(args));
   ProgressLine progress(!args.quiet);
   auto feed = [&](const sensors::SensorRecord& record) {
     chain.Push(record);

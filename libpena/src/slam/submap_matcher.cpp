@@ -18,6 +18,18 @@ bool WellConditioned(const Eigen::Matrix3d& information, double min_ratio) {
   return values.y() > 0.0 && values.x() / values.y() >= min_ratio;
 }
 
+enum class Edge { kNone, kPosition, kHeading };
+
+// Where the best grid pose lies among the window's outermost candidates (position first).
+Edge WindowEdge(const geometry::Pose2& grid_pose, const geometry::Pose2& prior,
+                const scan_matching::SearchWindow& window) {
+  if (!scan_matching::OnWindowEdge(grid_pose, prior, window)) return Edge::kNone;
+  scan_matching::SearchWindow position_only = window;
+  position_only.size_theta_rad = 0.0;  // no heading steps: never on the heading edge
+  return scan_matching::OnWindowEdge(grid_pose, prior, position_only) ? Edge::kPosition
+                                                                      : Edge::kHeading;
+}
+
 }  // namespace
 
 scan_matching::Points2 KeyframePoints(const sensors::LaserScan& scan, const SlamOptions& options) {
@@ -71,15 +83,21 @@ std::optional<LoopMatch> SubmapMatcher::Match(const std::vector<Keyframe>& keyfr
   window.step_theta_rad = kStepThetaRad;
   window.size_x_m = 2.0 * std::ceil(half_m / step_m) * step_m;
   window.size_y_m = window.size_x_m;
-  window.size_theta_rad = 2.0 * std::ceil(half_rad / kStepThetaRad) * kStepThetaRad;
-  const scan_matching::MatchResult result =
-      matcher_->MatchBranchAndBound(scan, centre_from_prior, window);
-  if (!result.converged || result.score < options_.loop_min_score) return std::nullopt;
-  // The best pose on the window's edge: the optimum may lie outside, and the edge pose is then
-  // only the best of a cut-off slope (loop170 seed 1 closed its loop 3.4 m off this way).
-  if (options_.reject_window_edge &&
-      scan_matching::OnWindowEdge(result.grid_pose, centre_from_prior, window)) {
-    return std::nullopt;
+  scan_matching::MatchResult result;
+  for (;;) {
+    window.size_theta_rad = 2.0 * std::ceil(half_rad / kStepThetaRad) * kStepThetaRad;
+    result = matcher_->MatchBranchAndBound(scan, centre_from_prior, window);
+    if (!result.converged || result.score < options_.loop_min_score) return std::nullopt;
+    const Edge edge = WindowEdge(result.grid_pose, centre_from_prior, window);
+    if (edge == Edge::kNone) break;
+    // The best pose on the window's edge is only the best of a cut-off slope: the optimum lies
+    // outside. In position that is a graph the submap disagrees with by more than the window
+    // trusts, typically a corridor's along direction that each closure would then creep
+    // (docs/slam.md): refused. In heading it is the odometry's heading drift, which every wall
+    // of the submap observes without the corridor's ambiguity: searched again with the heading
+    // window doubled, up to loop_window_max_rad.
+    if (edge == Edge::kPosition || half_rad >= options_.loop_window_max_rad) return std::nullopt;
+    half_rad = std::min(2.0 * half_rad, options_.loop_window_max_rad);
   }
   if (!WellConditioned(result.information, options_.degenerate_eigen_ratio)) return std::nullopt;
   return LoopMatch{result.reference_from_scan, result.score, result.information};

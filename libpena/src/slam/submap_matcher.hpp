@@ -39,8 +39,8 @@ class SubmapMatcher {
   // against keyframes [centre - submap_keyframes, centre + submap_keyframes] no later than
   // `last_allowed`, placed by `poses`
   // (world_from_keyframe). `graph_version` changes whenever `poses` do. nullopt when the match
-  // failed, scored below loop_min_score, was degenerate (a corridor) or, with
-  // reject_window_edge, lay on the window's edge.
+  // failed, scored below loop_min_score, was degenerate (a corridor), lay on the window's
+  // position edge, or on its heading edge even with the heading window at loop_window_max_rad.
   std::optional<LoopMatch> Match(const std::vector<Keyframe>& keyframes,
                                  const std::vector<geometry::Pose2>& poses, int centre,
                                  int submap_keyframes, int last_allowed, long graph_version,

@@ -25,13 +25,10 @@ struct SlamOptions {
   double loop_window_max_m = 2.0;    // up to this
   double loop_window_rad = 0.08726646259971647;      // 5 deg half-width after a closure
   double loop_window_rad_per_m = 0.002;              // growth per metre
+  // A match on the heading edge is searched again with the heading half-width doubled, up to
+  // this; a match on the position edge is refused (submap_matcher.cpp, docs/slam.md).
   double loop_window_max_rad = 0.2617993877991494;   // 15 deg
   double loop_min_score = 0.6;       // eq. 2 score a closure needs
-  // Refuse a closure whose best grid pose lies on the search window's edge (the optimum may lie
-  // outside). Off here, on for people in `pena map`: it removes wrong corridor closures but also
-  // right ones where a drifted heading is caught at the window's edge, which a robot's wheel
-  // odometry has and a person's compass prevents (docs/slam.md).
-  bool reject_window_edge = false;
   double degenerate_eigen_ratio = 0.05;  // translation eigenvalue ratio below: corridor, refused
   int loop_check_every = 1;          // try a closure at every n-th keyframe
   scan_matching::CorrelationMatcherOptions matcher{0.06, 0.02, 8, 10, true};
