@@ -24,6 +24,7 @@ void FusionService::LockstepProgress(const Event& event) {
   } else if (const auto* status = std::get_if<pena_dds::EntityStatus>(&event.sample)) {
     const std::string entity_id = status->entity_id().to_string();
     LockstepJoin(entity_id);
+    lockstep_order_->StatusHeard(entity_id);
     if (status->state() == pena_dds::ENTITY_FINISHED || status->state() == pena_dds::ENTITY_FAILED) {
       lockstep_order_->Finished(entity_id, status->local_map_version(),
                                 status->reference_scans_sent());

@@ -101,6 +101,11 @@ void LockstepOrder::Finished(const std::string& entity_id, std::uint64_t final_v
   Advance(entity);
 }
 
+void LockstepOrder::StatusHeard(const std::string& entity_id) {
+  // Not Get(): whether the entity was seen is Join's to decide (base version after a restart).
+  entities_[entity_id].status_heard = true;
+}
+
 void LockstepOrder::Drop(const std::string& entity_id) { Get(entity_id).done = true; }
 
 void LockstepOrder::Advance(Entity& entity) {
@@ -125,7 +130,7 @@ void LockstepOrder::Advance(Entity& entity) {
 }
 
 const LockstepOrder::Item* LockstepOrder::Ready(const Entity& entity) const {
-  if (entity.items.empty()) return nullptr;
+  if (entity.items.empty() || !entity.status_heard) return nullptr;
   const auto& [key, item] = *entity.items.begin();
   // Everything the entity sent before it was handled: a delta applies on top of the released
   // versions, a scan waits for the deltas its map holds; both wait for the scans before them.
@@ -140,7 +145,14 @@ bool LockstepOrder::Safe(const std::string& entity_id, double stamp_s) const {
 
 std::string LockstepOrder::Blocker(const std::string& entity_id, double stamp_s) const {
   for (const auto& [id, other] : entities_) {
-    if (id == entity_id || other.done || other.skipped) continue;
+    if (id == entity_id || other.skipped) continue;
+    // Items it holds wait for its status (even once it is done): nothing after them goes.
+    if (!other.status_heard) {
+      for (const auto& [key, item] : other.items) {
+        if (!Before(stamp_s, entity_id, item.stamp_s, id)) return id;
+      }
+    }
+    if (other.done) continue;
     // Its later items come at or after (frontier_s, id).
     if (!Before(stamp_s, entity_id, other.frontier_s, id)) return id;
   }
@@ -185,6 +197,8 @@ std::optional<LockstepRelease> LockstepOrder::Next(std::int64_t now_ns) {
 
 LockstepRelease LockstepOrder::Release(const std::string& entity_id, Entity& entity, bool forced,
                                        const std::string& waited_for, std::int64_t now_ns) {
+  // Forced out: its status is not waited for any longer either (a stall per item would crawl).
+  if (forced) entity.status_heard = true;
   const auto it = entity.items.begin();
   const std::uint64_t to_version = std::get<0>(it->first);
   const Item item = it->second;
@@ -213,7 +227,8 @@ std::size_t LockstepOrder::held() const {
 std::string LockstepOrder::Describe() const {
   std::ostringstream out;
   for (const auto& [id, entity] : entities_) {
-    out << id << ": " << (entity.seen ? "" : "not seen, ") << (entity.done ? "done, " : "")
+    out << id << ": " << (entity.seen ? "" : "not seen, ")
+        << (entity.status_heard ? "" : "no status yet, ") << (entity.done ? "done, " : "")
         << (entity.skipped ? "skipped, " : "") << "at " << entity.frontier_s << " s, versions "
         << entity.released_version << " released / " << entity.received_version
         << " received, " << entity.items.size() << " held";

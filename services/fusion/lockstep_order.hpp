@@ -71,6 +71,11 @@ class LockstepOrder {
   // scans_sent reference scans published.
   void Progress(const std::string& entity_id, double stamp_s, std::uint64_t local_map_version,
                 std::uint64_t scans_sent);
+  // The entity's status was handled: its kind and whether its start is known, which the
+  // correction filter and the placement depend on. Until then none of its items is its turn
+  // (the status is published first but travels on its own topic, so it may arrive after the
+  // first reference scan; a stall releases them anyway).
+  void StatusHeard(const std::string& entity_id);
   // The entity finished: once what it sent has arrived it is not waited for any more.
   void Finished(const std::string& entity_id, std::uint64_t final_version,
                 std::uint64_t scans_sent);
@@ -108,6 +113,7 @@ class LockstepOrder {
   struct Entity {
     bool seen = false;                 // an expected entity counts only once seen
     bool scans_known = true;           // false after a restart until its first sample
+    bool status_heard = false;         // StatusHeard: its items may be released
     std::uint64_t released_version = 0;  // deltas applied up to here
     std::uint64_t received_version = 0;  // every delta up to here is released or held
     std::uint64_t released_scans = 0;    // reference scans handled up to this seq

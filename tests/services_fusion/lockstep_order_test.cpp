@@ -38,6 +38,9 @@ struct Stream {
 Stream TwoEntities() {
   Stream stream;
   auto& e = stream.events;
+  // Each entity's status (its kind): published first, but on its own topic.
+  e.push_back([](LockstepOrder& o) { o.StatusHeard("A"); });
+  e.push_back([](LockstepOrder& o) { o.StatusHeard("B"); });
   // A: stamps 1, 2, 3.
   e.push_back([](LockstepOrder& o) { o.AddDelta("A", 1.0, 0, 1, 0, 1, 0); });
   e.push_back([](LockstepOrder& o) { o.AddScan("A", 1.0, 1, 1, 2, 0); });
@@ -79,8 +82,31 @@ TEST(LockstepOrder, ReleasesInMissionOrderWhateverTheArrivalOrder) {
   }
 }
 
+// The correction filter and the placement need the entity's kind and start from its status,
+// which travels on its own topic: a scan that overtook it waits (else one run matches it as a
+// robot and the next as a person), and a stall still lets it out if the status never comes.
+TEST(LockstepOrder, AnEntitysItemsWaitForItsStatus) {
+  LockstepOrder order({{}, 3.0});
+  order.AddScan("A", 1.0, 0, 1, 1, 0);
+  order.AddDelta("A", 1.0, 0, 1, 1, 2, 0);
+  EXPECT_TRUE(Drain(order, 0).empty());
+  order.StatusHeard("A");
+  EXPECT_EQ(Drain(order, 0), (std::vector<std::uint64_t>{1, 2}));
+  order.Finished("A", 1, 1);
+  order.AddScan("B", 2.0, 0, 1, 3, 0);
+  EXPECT_TRUE(Drain(order, 2 * kSecondNs).empty());
+  std::vector<LockstepRelease> releases;
+  EXPECT_EQ(Drain(order, 4 * kSecondNs, &releases), (std::vector<std::uint64_t>{3}));
+  ASSERT_EQ(releases.size(), 1u);
+  EXPECT_TRUE(releases[0].forced);
+  // ... and its status is not waited for again.
+  order.AddScan("B", 3.0, 0, 2, 4, 4 * kSecondNs);
+  EXPECT_EQ(Drain(order, 4 * kSecondNs), (std::vector<std::uint64_t>{4}));
+}
+
 TEST(LockstepOrder, AScanWaitsForTheDeltasItsMapHolds) {
   LockstepOrder order({{}, 10.0});
+  order.StatusHeard("A");
   order.AddScan("A", 1.0, 2, 1, 10, 0);
   order.AddDelta("A", 0.5, 0, 1, 0, 11, 0);
   // The delta to version 2 is still on its way: only the first delta may go.
@@ -91,6 +117,7 @@ TEST(LockstepOrder, AScanWaitsForTheDeltasItsMapHolds) {
 
 TEST(LockstepOrder, ADeltaWaitsForTheScansSentBeforeIt) {
   LockstepOrder order({{}, 10.0});
+  order.StatusHeard("A");
   // The delta after scan 1 overtook it (another topic): it waits for the scan.
   order.AddDelta("A", 2.0, 0, 1, 1, 1, 0);
   EXPECT_TRUE(Drain(order, 0).empty());
@@ -105,6 +132,7 @@ TEST(LockstepOrder, ADeltaWaitsForTheScansSentBeforeIt) {
 
 TEST(LockstepOrder, AnEntityBehindHoldsTheOthersUntilItPassesTheStamp) {
   LockstepOrder order({{}, 10.0});
+  for (const char* id : {"A", "B"}) order.StatusHeard(id);
   order.Progress("B", 0.5, 0, 0);
   order.AddScan("A", 1.0, 0, 1, 1, 0);
   EXPECT_TRUE(Drain(order, 0).empty());
@@ -118,6 +146,7 @@ TEST(LockstepOrder, AnEntityBehindHoldsTheOthersUntilItPassesTheStamp) {
 
 TEST(LockstepOrder, AtEqualStampsTheLaterIdWaitsUntilTheEarlierMovedOn) {
   LockstepOrder order({{}, 10.0});
+  for (const char* id : {"A", "B"}) order.StatusHeard(id);
   order.AddScan("B", 1.0, 0, 1, 1, 0);
   order.AddScan("A", 1.0, 0, 1, 2, 0);
   // A's scan goes first; B's waits until A is past 1.0 (a correction delta of A at 1.0 may come).
@@ -130,6 +159,7 @@ TEST(LockstepOrder, AtEqualStampsTheLaterIdWaitsUntilTheEarlierMovedOn) {
 
 TEST(LockstepOrder, AnExpectedEntityIsWaitedForUntilItIsHeard) {
   LockstepOrder order({{"A", "B"}, 10.0});
+  for (const char* id : {"A", "B"}) order.StatusHeard(id);
   order.AddScan("A", 1.0, 0, 1, 1, 0);
   EXPECT_TRUE(Drain(order, 0).empty());
   order.Join("B", 0, true);
@@ -139,6 +169,7 @@ TEST(LockstepOrder, AnExpectedEntityIsWaitedForUntilItIsHeard) {
 
 TEST(LockstepOrder, AStalledEntityIsPassedOverAfterStallAndWaitedForAgainOnceItCatchesUp) {
   LockstepOrder order({{}, 3.0});
+  for (const char* id : {"A", "B"}) order.StatusHeard(id);
   order.Progress("B", 0.5, 0, 0);
   order.AddScan("A", 1.0, 0, 1, 1, 0);
   EXPECT_TRUE(Drain(order, 2 * kSecondNs).empty());
@@ -161,6 +192,7 @@ TEST(LockstepOrder, AStalledEntityIsPassedOverAfterStallAndWaitedForAgainOnceItC
 
 TEST(LockstepOrder, ALostDeltaIsForcedOutAfterStallSoTheStoreSeesTheGap) {
   LockstepOrder order({{}, 3.0});
+  order.StatusHeard("A");
   order.AddDelta("A", 1.0, 1, 2, 0, 1, 0);  // 0 -> 1 never comes
   EXPECT_TRUE(Drain(order, kSecondNs).empty());
   EXPECT_EQ(Drain(order, 4 * kSecondNs), (std::vector<std::uint64_t>{1}));
@@ -170,6 +202,7 @@ TEST(LockstepOrder, ALostDeltaIsForcedOutAfterStallSoTheStoreSeesTheGap) {
 
 TEST(LockstepOrder, ADroppedOrFinishedEntityNoLongerHoldsTheOthers) {
   LockstepOrder order({{}, 10.0});
+  for (const char* id : {"A", "B", "C"}) order.StatusHeard(id);
   order.Progress("B", 0.5, 0, 0);
   order.Progress("C", 0.5, 1, 0);
   order.AddScan("A", 1.0, 0, 1, 1, 0);
@@ -184,6 +217,7 @@ TEST(LockstepOrder, ADroppedOrFinishedEntityNoLongerHoldsTheOthers) {
 
 TEST(LockstepOrder, ADeltaReceivedTwiceIsReleasedTwiceNotLost) {
   LockstepOrder order({{}, 10.0});
+  order.StatusHeard("A");
   order.AddDelta("A", 1.0, 0, 1, 0, 1, 0);
   order.AddDelta("A", 1.0, 0, 1, 0, 2, 0);
   EXPECT_EQ(Drain(order, 0), (std::vector<std::uint64_t>{1, 2}));
@@ -192,6 +226,7 @@ TEST(LockstepOrder, ADeltaReceivedTwiceIsReleasedTwiceNotLost) {
 TEST(LockstepOrder, AfterARestartDeltasTheStoreHoldsPassAtOnce) {
   LockstepOrder order({{}, 10.0});
   order.Join("A", 5, false);
+  order.StatusHeard("A");
   // Durable history sent again (4 scans had gone before the first sample heard), then new.
   order.AddDelta("A", 1.0, 2, 3, 4, 1, 0);
   order.AddDelta("A", 9.0, 5, 6, 4, 2, 0);
