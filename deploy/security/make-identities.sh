@@ -329,9 +329,10 @@ for id in "${ENTITIES[@]}"; do
                       "$(subscribe_in_xml "$id" "${SENSOR_TOPICS[@]}")")
 $(allow_rule_xml "" "$(subscribe_xml "${FUSION_TOPICS[@]}" "${SYNC_TOPICS[@]}")")"
 done
-# The fusion relays operator decisions as annotations (services/fusion, the operator log).
+# The fusion relays operator decisions as annotations (services/fusion, the operator log) and
+# answers each operator correction on its topic (applied or refused, for the consoles).
 make_identity fusion fusion "$(allow_rule_xml \
-  "$(publish_xml "" "${FUSION_TOPICS[@]}" pena/annotation "${SYNC_TOPICS[@]}")" \
+  "$(publish_xml "" "${FUSION_TOPICS[@]}" pena/annotation pena/operator/correction "${SYNC_TOPICS[@]}")" \
   "$(subscribe_xml "${ENTITY_TOPICS[@]}" "${FUSION_TOPICS[@]}" "${OPERATOR_TOPICS[@]}" "${SYNC_TOPICS[@]}")")"
 # Operators (pena-console) also show the radio link's health that the gateways publish.
 for id in "${OPERATOR_IDS[@]}"; do

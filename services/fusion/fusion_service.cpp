@@ -130,15 +130,21 @@ void FusionService::CreateOperatorEndpoints() {
         Enqueue<pena_dds::OperatorCorrectionPubSubType>("operator_correction"));
     annotation_reader_ = std::make_unique<Reader<pena_dds::AnnotationPubSubType>>(
         participant_, topics::kAnnotation, Enqueue<pena_dds::AnnotationPubSubType>("annotation"));
-    operator_answer_writer_ = std::make_unique<Writer<pena_dds::OperatorCorrectionPubSubType>>(
-        participant_, topics::kOperatorCorrection);
   } catch (const DdsError& error) {
-    operator_answer_writer_.reset();
     annotation_reader_.reset();
     operator_reader_.reset();
     annotation_writer_.reset();
     spdlog::error("operator topics unavailable, annotations and operator corrections are NOT "
                   "handled: {}", error.what());
+    return;
+  }
+  // The answer (applied or refused) only tells the consoles: without it corrections still apply.
+  try {
+    operator_answer_writer_ = std::make_unique<Writer<pena_dds::OperatorCorrectionPubSubType>>(
+        participant_, topics::kOperatorCorrection);
+  } catch (const DdsError& error) {
+    spdlog::error("operator corrections are applied, but the consoles are not told whether: {}",
+                  error.what());
   }
 }
 

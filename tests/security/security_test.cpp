@@ -328,6 +328,8 @@ TEST(RoguePeer, NoSampleOfARogueReachesTheTeamAndTheTrajectoriesAreUnchanged) {
                                              "robot2_odom.tum", "robot2_world.tum"}));
   const std::string fusion_log = testing::ReadFile(attacked / "fusion.log");
   EXPECT_EQ(fusion_log.find("rogue"), std::string::npos) << fusion_log;
+  // Its permissions let it read and answer the operators (console corrections and marks).
+  EXPECT_EQ(fusion_log.find("operator corrections are"), std::string::npos) << fusion_log;
   EXPECT_NE(testing::ReadFile(attacked / "fusion.log").find("refused a sample about entity "
                                                             "'robot1' from a writer in partition "
                                                             "'ff9'"),
