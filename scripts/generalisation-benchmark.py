@@ -12,6 +12,8 @@ Rows:
              of the trajectory RMSE, the worst final and max heading error, runs over 5 deg.
   sim        simulated firefighters (loop170, office) scored against their truth: RMSE and final
              error in % of the path.
+Every row also gives `jump`: the largest turn one scan's match gave the heading away from its
+motion prior (degrees; worst over seeds): a slip caught, or a wrong match taken.
 Logs nobody here has seen are scored the same way: --log LOG --relations R (a real log with
 Kuemmerle relations) or --corrected LOG (a log with corrected poses, perturbed like the radish ones).
 
@@ -23,8 +25,10 @@ Kuemmerle relations) or --corrected LOG (a log with corrected poses, perturbed l
 --jobs N runs N chains at once (default 2); each chain uses one core. Wall times are per run.
 """
 import argparse
+import csv
 import concurrent.futures
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -62,6 +66,26 @@ def eval_json(pena, args, log_path):
     return json.loads(out.stdout)
 
 
+def largest_jump_deg(out):
+    """The largest turn one scan's match gave the heading away from its motion prior (degrees):
+    a slip caught, or a wrong match taken (DIR/odometry.csv; None without it)."""
+    path = out / "odometry.csv"
+    if not path.exists():
+        return None
+    jump = 0.0
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            if row["status"] in ("matched", "degenerate"):
+                turn = float(row["theta"]) - float(row["prior_theta"])
+                jump = max(jump, abs(math.degrees(math.atan2(math.sin(turn), math.cos(turn)))))
+    return jump
+
+
+def worst(values):
+    values = [v for v in values if v is not None]
+    return max(values) if values else None
+
+
 def chain(pena, log, out, opts, extra):
     """Runs the chain on `log` into `out`; returns (trajectory path, wall seconds, log seconds)."""
     out.mkdir(parents=True, exist_ok=True)
@@ -85,7 +109,8 @@ def real_row(pena, name, log, relations, work, opts, extra):
     r = eval_json(pena, ["--trajectory", traj, "--relations", relations], out / "eval.log")["relations"]
     t, s, rot = r["translational_error_m"], r["translational_error_spread_m"], r["rotational_error_spread_deg"]
     return {"set": "real", "log": name, "mean_m": t["mean"], "median_m": s["median"], "p95_m": s["p95"],
-            "max_m": s["max"], "max_rot_deg": rot["max"], "wall_s": wall_s, "log_s": log_s}
+            "max_m": s["max"], "max_rot_deg": rot["max"], "jump_deg": largest_jump_deg(out),
+            "wall_s": wall_s, "log_s": log_s}
 
 
 def perturbed_run(pena, name, corrected, seed, work, opts, extra):
@@ -99,7 +124,7 @@ def perturbed_run(pena, name, corrected, seed, work, opts, extra):
     t = eval_json(pena, ["--trajectory", traj, "--truth", truth], out / "eval.log")["truth"]
     return {"rmse_m": t["translation_rmse_m"], "max_m": t["max_translation_error_m"],
             "final_heading_deg": t["final_heading_error_deg"], "max_heading_deg": t["max_heading_error_deg"],
-            "wall_s": wall_s, "log_s": log_s}
+            "jump_deg": largest_jump_deg(out / "run"), "wall_s": wall_s, "log_s": log_s}
 
 
 def perturbed_row(name, runs, seeds):
@@ -111,6 +136,7 @@ def perturbed_row(name, runs, seeds):
             "max_rot_deg": max(r["max_heading_deg"] for r in runs),
             "final_heading_worst_deg": max(r["final_heading_deg"] for r in runs),
             "runs_over_5deg": sum(r["final_heading_deg"] > 5.0 for r in runs),
+            "jump_deg": worst(r["jump_deg"] for r in runs),
             "wall_s": sum(r["wall_s"] or 0 for r in runs), "log_s": sum(r["log_s"] or 0 for r in runs)}
 
 
@@ -125,7 +151,7 @@ def sim_run(pena, scenario, seed, work, extra):
     t = eval_json(pena, ["--trajectory", traj, "--truth", mission / "ff1" / "truth.tum"], out / "eval.log")["truth"]
     return {"rmse_m": t["translation_rmse_m"], "final_pct": t["final_error_percent_of_path"],
             "max_m": t["max_translation_error_m"], "max_heading_deg": t["max_heading_error_deg"],
-            "wall_s": wall_s, "log_s": log_s}
+            "jump_deg": largest_jump_deg(out / "run"), "wall_s": wall_s, "log_s": log_s}
 
 
 def sim_row(scenario, runs):
@@ -134,6 +160,7 @@ def sim_row(scenario, runs):
             "median_m": sorted(r["rmse_m"] for r in runs)[(n - 1) // 2], "p95_m": None,
             "max_m": max(r["max_m"] for r in runs), "max_rot_deg": max(r["max_heading_deg"] for r in runs),
             "final_pct_worst": max(r["final_pct"] for r in runs),
+            "jump_deg": worst(r["jump_deg"] for r in runs),
             "wall_s": sum(r["wall_s"] or 0 for r in runs), "log_s": sum(r["log_s"] or 0 for r in runs)}
 
 
@@ -143,7 +170,7 @@ def fmt(value, digits=3):
 
 def print_table(rows):
     print(f"{'set':<14} {'log':<16} {'mean m':>8} {'median':>8} {'p95':>8} {'max m':>8} "
-          f"{'max rot':>8} {'extra':<22} {'wall s':>8} {'x real':>7}")
+          f"{'max rot':>8} {'jump':>6} {'extra':<22} {'wall s':>8} {'x real':>7}")
     for r in rows:
         if "runs_over_5deg" in r:
             extra = f"final hdg<={r['final_heading_worst_deg']:.1f}deg,{r['runs_over_5deg']}>5"
@@ -153,7 +180,8 @@ def print_table(rows):
             extra = ""
         speed = r["log_s"] / r["wall_s"] if r.get("wall_s") and r.get("log_s") else None
         print(f"{r['set']:<14} {r['log']:<16} {fmt(r['mean_m']):>8} {fmt(r['median_m']):>8} "
-              f"{fmt(r['p95_m']):>8} {fmt(r['max_m']):>8} {fmt(r['max_rot_deg'], 1):>8} {extra:<22} "
+              f"{fmt(r['p95_m']):>8} {fmt(r['max_m']):>8} {fmt(r['max_rot_deg'], 1):>8} "
+              f"{fmt(r.get('jump_deg'), 1):>6} {extra:<22} "
               f"{fmt(r['wall_s'], 1):>8} {fmt(speed, 0):>7}")
 
 
