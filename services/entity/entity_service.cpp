@@ -327,7 +327,8 @@ void EntityService::Hold(double hold_at_s) {
     }
   }
   paused_ns_ += NowNs() - start_ns;
-  spdlog::info("{}: hold {} released after {:.1f} wall s", entity_id_, hold,
+  spdlog::info("{}: hold {} {} after {:.1f} wall s", entity_id_, hold,
+               StopRequested() ? "ended by a stop signal" : "released",
                static_cast<double>(NowNs() - start_ns) * 1e-9);
 }
 
