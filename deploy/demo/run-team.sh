@@ -17,7 +17,8 @@
 # deployment; off by itself with --no-corrections, where there is no answer to wait for),
 # PENA_DEMO_CORRECTION_INTERVAL (2.4: mission seconds between correction attempts per entity),
 # PENA_ENTITY_CONFIG (an EntityConfig file every pena-entity reads first; its command line wins,
-# e.g. `pipeline { spread_strides: true }`, docs/services.md), PENA_DEMO_CONSOLE (1: serve
+# e.g. `pipeline { spread_strides: true }`, docs/services.md), PENA_ENTITY_ARGS (extra
+# pena-entity options for every entity, e.g. `--hold-at 17,22`), PENA_DEMO_CONSOLE (1: serve
 # pena-console, if built, while the team runs, and write OUT/console.png, a headless chromium's
 # screenshot of it at the end; 0: no console), PENA_DEMO_CONSOLE_PORT (8090; on 127.0.0.1),
 # PENA_DEMO_SECURE (1: DDS Security, every process with its own identity made for the run by
@@ -162,9 +163,10 @@ ENTITIES=()
 for id in "${TEAM_IDS[@]}"; do
   ENTITIES+=("$id")
   rm -rf "${OUT:?}/$id"
+  # shellcheck disable=SC2086  # PENA_ENTITY_ARGS is a list of options
   "$ENTITY_BIN" --input "$(entity_log "$MISSION/$id")" --rate "$RATE" --out "$OUT/$id" --domain "$DOMAIN" \
     --profiles-file "$DDS_DIR/pena-loopback.xml" --profiles-file "$DDS_DIR/pena-qos.xml" \
-    --wait-for-readers 20 --linger 5 "${ENTITY_ARGS[@]}" \
+    --wait-for-readers 20 --linger 5 "${ENTITY_ARGS[@]}" ${PENA_ENTITY_ARGS:-} \
     $( ((SECURE)) && echo "--security $SEC/$id") > "$OUT/logs/$id.log" 2>&1 &
   ENTITY_PIDS+=("$!")
   PIDS+=("$!")

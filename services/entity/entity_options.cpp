@@ -117,6 +117,14 @@ void ValidateEntityOptions(const EntityServiceOptions& options) {
   require(options.await_corrections_s >= 0.0,
           "--await-corrections must be >= 0 (mission seconds between awaited attempts; 0 = off), "
           "got " + std::to_string(options.await_corrections_s));
+  for (std::size_t i = 0; i < options.hold_at_s.size(); ++i) {
+    const double t = options.hold_at_s[i];
+    require(std::isfinite(t) && t >= 0.0 && (i == 0 || t > options.hold_at_s[i - 1]),
+            "--hold-at must be increasing mission times >= 0 s, got " + std::to_string(t) +
+                " at position " + std::to_string(i + 1));
+  }
+  require(options.hold_at_s.empty() || !IsLiveInput(options.input),
+          "--hold-at needs a log input: the live sensor topics (input dds) are not ours to hold");
   CorrectionGate{options.corrections};  // throws naming corrections.<field>
   require(options.wait_for_readers_s >= 0.0, "wait_for_readers_s must be >= 0 s, got " +
                                                  std::to_string(options.wait_for_readers_s));

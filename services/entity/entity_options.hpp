@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "correction_gate.hpp"
 #include "dds_participant.hpp"
@@ -34,6 +35,11 @@ struct EntityServiceOptions {
   // Lockstep with pena-fusion --lockstep --correction-interval of the same value (mission s; 0 =
   // off): wait for the fusion's answer at the scans it attempts. Command line only.
   double await_corrections_s = 0.0;
+  // Mission times (the log's stamps, s, increasing) at which the entity stops its clock until a
+  // SIGUSR1 releases it: nothing is read or published meanwhile, corrections and heartbeats are
+  // served, and the pause is not counted in the pacing. Lets a test act at a fixed mission time
+  // on a loaded machine. Log input only; command line only (--hold-at).
+  std::vector<double> hold_at_s;
   // What corrections are applied (docs/security.md): increasing seq, and within chi-square
   // max_chi2 of the entity's own uncertainty unless an operator sent them. Command line only
   // (--correction-max-chi2).

@@ -2,7 +2,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include <unistd.h>
+
+#include <atomic>
 #include <cmath>
+#include <csignal>
 #include <thread>
 
 #include "pena/io/input_error.hpp"
@@ -32,6 +36,10 @@ DdsOptions InOwnPartition(DdsOptions dds) {
   dds.own_partition = true;
   return dds;
 }
+
+// --hold-at: SIGUSR1s received; hold k (from 1) ends when there have been k.
+std::atomic<int> g_hold_releases{0};
+extern "C" void OnHoldRelease(int /*signal_number*/) { g_hold_releases.fetch_add(1); }
 
 }  // namespace
 
@@ -171,6 +179,8 @@ void EntityService::WaitForReaders() {
 }
 
 EntityRunSummary EntityService::Run() {
+  // Before anything else: a release sent early must not end the process (SIGUSR1's default).
+  if (!options_.hold_at_s.empty()) std::signal(SIGUSR1, OnHoldRelease);
   WaitForReaders();
   PublishStatus(pena_dds::ENTITY_RUNNING);
   const double first_stamp_s = sensors::StampOf(read_ahead_.front());
@@ -194,6 +204,10 @@ EntityRunSummary EntityService::Run() {
       DrainInbox(wall_start_ns + paused_ns_ + SecondsToNs(offset_s));
     } else {
       DrainInbox(0);
+    }
+    while (next_hold_ < options_.hold_at_s.size() &&
+           sensors::StampOf(*record) >= options_.hold_at_s[next_hold_] && !StopRequested()) {
+      Hold(options_.hold_at_s[next_hold_]);
     }
     Take(*record);
     HeartbeatIfDue();
@@ -293,6 +307,29 @@ void EntityService::AwaitAnswer(std::uint64_t seq) {
                  static_cast<double>(kAwaitTimeoutNs) * 1e-9);
   }
   paused_ns_ += NowNs() - start_ns;
+}
+
+void EntityService::Hold(double hold_at_s) {
+  const int hold = static_cast<int>(++next_hold_);
+  const std::int64_t start_ns = NowNs();
+  // The lines a test waits for: flushed at once, whatever the log level's flush policy.
+  spdlog::info("{}: held at {:.3f} s of mission time (last pose {:.3f} s); SIGUSR1 to pid {} "
+               "releases hold {}",
+               entity_id_, hold_at_s, last_stamp_s_, static_cast<long>(::getpid()), hold);
+  spdlog::default_logger()->flush();
+  std::uint64_t applied_seq = correction_seq_;
+  while (g_hold_releases.load() < hold && !StopRequested()) {
+    DrainInbox(NowNs() + kPollNs);
+    if (correction_seq_ != applied_seq) {
+      applied_seq = correction_seq_;
+      spdlog::info("{}: held: correction {} applied", entity_id_, applied_seq);
+      spdlog::default_logger()->flush();
+    }
+  }
+  paused_ns_ += NowNs() - start_ns;
+  spdlog::info("{}: hold {} {} after {:.1f} wall s", entity_id_, hold,
+               StopRequested() ? "ended by a stop signal" : "released",
+               static_cast<double>(NowNs() - start_ns) * 1e-9);
 }
 
 void EntityService::SendFailed(const std::string& topic) {

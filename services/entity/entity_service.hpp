@@ -90,6 +90,9 @@ class EntityService {
   // --await-corrections: waits (handling the inbox) until the fusion answered reference scan
   // `seq` or the timeout passed; the wait is added to the pacing.
   void AwaitAnswer(std::uint64_t seq);
+  // --hold-at: stops the clock at mission time `hold_at_s` until SIGUSR1 number `next_hold_`
+  // arrives, serving the inbox meanwhile; the hold is added to the pacing.
+  void Hold(double hold_at_s);
   // --unknown-start (entity_unknown_start.cpp): the chain's start pose (the origin instead of
   // the log's), a step's poses in the frame the fusion sent, and the fusion's frame corrections.
   geometry::Pose2 StartFrame(const geometry::Pose2& known_world_from_start) const;
@@ -131,7 +134,8 @@ class EntityService {
   std::int64_t last_sync_request_ns_ = 0;
   std::uint64_t answered_seq_ = 0;         // newest reference seq the fusion answered
   double last_awaited_stamp_s_ = -1e300;   // stamp of the last reference scan waited for
-  std::int64_t paused_ns_ = 0;             // wall time spent waiting for answers
+  std::int64_t paused_ns_ = 0;             // wall time spent waiting for answers or held
+  std::size_t next_hold_ = 0;              // index into options_.hold_at_s
   // --unknown-start: map_from_entity as the fusion last sent it (nullopt: not placed yet).
   std::optional<geometry::Pose2> map_from_entity_;
   // The last step's pose (as published) and covariance, which bound frame corrections.

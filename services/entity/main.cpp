@@ -25,6 +25,7 @@ struct Overrides {
   std::optional<double> rate, wait_for_readers_s, linger_s, await_corrections_s;
   std::optional<double> reorder_window_s, idle_timeout_s, correction_max_chi2;
   std::optional<int> domain_id;
+  std::vector<double> hold_at_s;
   bool record = false;
   bool start_unknown = false;
 };
@@ -54,6 +55,11 @@ void AddOptions(CLI::App& app, Overrides& o) {
                  "Lockstep with pena-fusion --lockstep: wait for the answer to every reference "
                  "scan at least this many mission seconds after the last awaited one (the "
                  "fusion's --correction-interval)");
+  app.add_option("--hold-at", o.hold_at_s,
+                 "Mission times (the log's stamps, s, comma-separated, increasing) at which to "
+                 "stop the clock until SIGUSR1: nothing read or published meanwhile, corrections "
+                 "applied; each SIGUSR1 releases one hold (for tests)")
+      ->delimiter(',');
   app.add_option("--correction-max-chi2", o.correction_max_chi2,
                  "Hold a correction whose move exceeds this chi-square of the entity's own pose "
                  "covariance (default 16.27: 99.9 % at 3 DoF; 0: no bound); operators' are applied");
@@ -99,6 +105,7 @@ EntityServiceOptions BuildOptions(const Overrides& o) {
   if (o.wait_for_readers_s) options.wait_for_readers_s = *o.wait_for_readers_s;
   if (o.linger_s) options.linger_s = *o.linger_s;
   if (o.await_corrections_s) options.await_corrections_s = *o.await_corrections_s;
+  if (!o.hold_at_s.empty()) options.hold_at_s = o.hold_at_s;
   if (o.correction_max_chi2) options.corrections.max_chi2 = *o.correction_max_chi2;
   if (!o.log_level.empty()) options.log_level = o.log_level;
   pena::services::ValidateEntityOptions(options);

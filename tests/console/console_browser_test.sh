@@ -7,8 +7,10 @@
 # Exit 77 (skipped) when chromium or the npm packages (tests/console/node_modules, installed by
 # scripts/setup.sh) are missing. Leaves its figures and screenshots in $PENA_CONSOLE_TEST_OUT
 # (default: a temporary directory, removed on success). PENA_CONSOLE_TEST_ROTATE=<entity> adds
-# the three-point rotation check; PENA_CONSOLE_TEST_FUSION_ARGS goes to pena-fusion
-# (--no-corrections: free-running); PENA_CONSOLE_TEST_RATE is the mission's time scale (2).
+# the three-point rotation check, done while the team's entities hold their clocks at the mission
+# times PENA_CONSOLE_TEST_HOLD_AT (17,22: pena-entity --hold-at; the test releases them);
+# PENA_CONSOLE_TEST_FUSION_ARGS goes to pena-fusion (--no-corrections: free-running);
+# PENA_CONSOLE_TEST_RATE is the mission's time scale (2).
 set -euo pipefail
 
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -60,7 +62,9 @@ echo "pena-console on http://127.0.0.1:$PORT/ and http://127.0.0.1:$PORT2/ (DDS 
 
 # The team at 2x real time: the browser's checks need the mission to last about a minute.
 # The domain's lock is held here; run-team.sh is told the domain.
-PENA_BUILD=$BUILD PENA_DEMO_MISSION=$OUT/mission PENA_DDS_DOMAIN=$DOMAIN \
+HOLD_AT=""
+[[ -n ${PENA_CONSOLE_TEST_ROTATE:-} ]] && HOLD_AT=${PENA_CONSOLE_TEST_HOLD_AT:-17,22}
+PENA_ENTITY_ARGS=${HOLD_AT:+--hold-at $HOLD_AT} PENA_BUILD=$BUILD PENA_DEMO_MISSION=$OUT/mission PENA_DDS_DOMAIN=$DOMAIN \
   PENA_DEMO_RATE=${PENA_CONSOLE_TEST_RATE:-2} PENA_FUSION_ARGS=${PENA_CONSOLE_TEST_FUSION_ARGS:-} \
   PENA_DEMO_CONSOLE=0 \
   bash "$REPO/deploy/demo/run-team.sh" "$OUT/run" > "$OUT/team.log" 2>&1 &
@@ -71,7 +75,7 @@ status=0
 node "$HERE/console_browser_test.js" --url "http://127.0.0.1:$PORT/" --url2 "http://127.0.0.1:$PORT2/" \
   --out "$OUT" \
   --mission "$OUT/mission" --entities 4 --chromium "$CHROMIUM" \
-  ${PENA_CONSOLE_TEST_ROTATE:+--rotate "$PENA_CONSOLE_TEST_ROTATE"} 2>&1 | tee "$OUT/browser.log" ||
+  ${PENA_CONSOLE_TEST_ROTATE:+--rotate "$PENA_CONSOLE_TEST_ROTATE" --hold-at "$HOLD_AT" --logs "$OUT/run/logs"} 2>&1 | tee "$OUT/browser.log" ||
   status=$?
 if ((status)); then
   echo "console_browser_test: failed; logs and screenshots in $OUT"

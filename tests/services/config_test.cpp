@@ -1,7 +1,9 @@
 // Strict config loading: unknown keys and bad values are errors naming file and line.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <vector>
 
 #include "config_loader.hpp"
 #include "entity_options.hpp"
@@ -51,6 +53,29 @@ TEST(ConfigLoader, LiveInputIsReadAndValidatedStrictly) {
   const auto wrong = Write("wrong.conf", "input: \"ff1.penalog\"\nlive_input { }\n");
   EXPECT_THROW(EntityOptionsFromConfig(LoadTextConfig<config::EntityConfig>(wrong), wrong),
                io::InputError);
+}
+
+TEST(ConfigLoader, HoldTimesMustIncreaseAndNeedALogInput) {
+  EntityServiceOptions options;
+  options.input = "ff1.penalog";
+  options.hold_at_s = {17.0, 22.0};
+  EXPECT_NO_THROW(ValidateEntityOptions(options));
+  for (const std::vector<double>& bad : {std::vector<double>{22.0, 17.0}, {17.0, 17.0}, {-1.0},
+                                         {17.0, std::nan("")}}) {
+    options.hold_at_s = bad;
+    try {
+      ValidateEntityOptions(options);
+      FAIL() << "no exception for hold_at_s of " << bad.size() << " times";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find("--hold-at"), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("at position"), std::string::npos) << error.what();
+    }
+  }
+  // The live sensor topics are paced by the sensors: not the entity's to hold.
+  options.input = "dds";
+  options.entity_id = "ff1";
+  options.hold_at_s = {17.0};
+  EXPECT_THROW(ValidateEntityOptions(options), std::invalid_argument);
 }
 
 TEST(ConfigLoader, UnknownKeyIsAnErrorNamingFileAndLine) {
