@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 
 #include "pena/io/line_csv.hpp"
 #include "pena/io/plan_reader.hpp"
@@ -28,6 +29,22 @@ std::vector<line_map::LineSegment> ReadPlanSegments(const std::filesystem::path&
     plan.push_back(segment);
   }
   return plan;
+}
+
+// Who saw each global wall and its estimated error sd (docs/fusion.md, "The global map"):
+// "id,seen_by,error_sd_m", seen_by space separated. Empty after a restart until the next rebuild.
+void WriteWallSupport(const std::filesystem::path& path,
+                      const std::map<std::int64_t, fusion::WallSupport>& support) {
+  std::ofstream out(path);
+  out << "id,seen_by,error_sd_m\n";
+  for (const auto& [id, wall] : support) {
+    std::string seen_by;
+    for (const std::string& who : wall.seen_by) seen_by += (seen_by.empty() ? "" : " ") + who;
+    char sd[32];
+    std::snprintf(sd, sizeof sd, "%.3f", wall.error_sd_m);
+    out << id << ',' << seen_by << ',' << sd << '\n';
+  }
+  if (!out) spdlog::warn("could not write {}", path.string());
 }
 
 }  // namespace
@@ -345,6 +362,8 @@ void FusionService::WriteOutputs() const {
   }
   io::WriteLineCsv(options_.output_dir / "global_map.csv", rows,
                    ",observations,support_cells,rms_error_m,provenance");
+  WriteWallSupport(options_.output_dir / "global_wall_support.csv",
+                   store_->state().GlobalSupport());
   stats_.Write(options_.output_dir, static_cast<double>(NowNs() - start_ns_) * 1e-9);
   spdlog::info("wrote {} (version {}, {} segments) and fusion_stats.json",
                (options_.output_dir / "global_map.csv").string(),

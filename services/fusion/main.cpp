@@ -39,7 +39,7 @@ void AddOptions(CLI::App& app, Overrides& o) {
   app.add_option("--config", o.config, "Config file (Protobuf text format, FusionConfig)");
   app.add_option("--state-dir", o.state_dir, "Journal and checkpoint directory");
   app.add_option("--plan", o.plan, "A priori plan (line CSV, SVG or DXF)");
-  app.add_option("--out", o.output_dir, "Output directory: global_map.csv, fusion_stats.json");
+  app.add_option("--out", o.output_dir, "Output directory: global_map.csv, global_wall_support.csv, fusion_stats.json");
   app.add_flag("--no-corrections", o.no_corrections, "Do not send corrections");
   app.add_flag("--raw-corrections", o.raw_corrections,
                "Send the raw match instead of blending it with the entity's uncertainty");

@@ -124,59 +124,59 @@ TEST(GlobalMap, WithholdsALoneDottedWallUntilAnotherEntityCorroboratesIt) {
 }
 
 TEST(GlobalMap, LeavesOutALoneDriftedCopyOfACorroboratedWall) {
-  // The copy alone is judged here: ff1's estimated wall error (its copy is 0.4 m off) would also
-  // withhold its lone wall (WithholdsTheLoneWallsOfAnEntityThatDisagreesWithTheOthers).
-  FusionOptions lenient;
-  lenient.global.max_lone_error_m = 10.0;
-  TwoEntities team(lenient);
   // Both see y = 2 (x 0..14 in the map); ff1 also saw it 0.4 m off from a drifted pose, and a
   // real wall 2 m away that nobody else saw.
-  team.fusion.Handle(LocalDelta{
-      1.0, "ff1",
-      team.ff1_map.Integrate({Wall(0, 2, 8, 2), Wall(1, 2.4, 7, 2.4), Wall(0, 4, 8, 4)}, "ff1")});
-  team.fusion.Handle(LocalDelta{2.0, "ff2", team.ff2_map.Integrate({Wall(-5, 2, 4, 2)}, "ff2")});
-  const line_map::MapSnapshot global = team.fusion.GlobalSnapshot();
-  ASSERT_EQ(global.segments.size(), 2u);
-  for (const line_map::LineSegment& wall : global.segments) {
-    EXPECT_GT(std::abs(wall.segment.start_m.y() - 2.4), 0.1) << "the drifted copy is out";
-  }
-  // With the rule off the copy is published.
-  FusionOptions options = lenient;
-  options.global.lone_duplicate_distance_m = 0.0;
-  FusionState off(options);
-  off.Handle(EntityJoin{0.0, "ff1", geometry::Pose2{}});
-  off.Handle(EntityJoin{0.0, "ff2", team.ff2_start});
-  line_map::LineMap ff1_again, ff2_again;
-  off.Handle(LocalDelta{
-      1.0, "ff1",
-      ff1_again.Integrate({Wall(0, 2, 8, 2), Wall(1, 2.4, 7, 2.4), Wall(0, 4, 8, 4)}, "ff1")});
-  off.Handle(LocalDelta{2.0, "ff2", ff2_again.Integrate({Wall(-5, 2, 4, 2)}, "ff2")});
-  EXPECT_EQ(off.GlobalSnapshot().segments.size(), 3u);
-}
-
-TEST(GlobalMap, WithholdsTheLoneWallsOfAnEntityThatDisagreesWithTheOthers) {
-  // ff1 drifted: of its walls along y = 2, which ff2 also saw, 8 m merged and 6 m are a copy
-  // 0.4 m off: its wall error there is estimated at 0.22 m. Its wall at y = 4 nobody else saw, 2 m
-  // away, is as suspect. ff2's walls agree (12 m of 12 m): its lone wall at y = -3 is published.
   const auto run = [](const FusionOptions& options) {
     TwoEntities team(options);
     team.fusion.Handle(LocalDelta{
         1.0, "ff1",
         team.ff1_map.Integrate({Wall(0, 2, 8, 2), Wall(1, 2.4, 7, 2.4), Wall(0, 4, 8, 4)}, "ff1")});
-    team.fusion.Handle(LocalDelta{
-        2.0, "ff2", team.ff2_map.Integrate({Wall(-10, 2, 2, 2), Wall(-10, -3, -4, -3)}, "ff2")});
+    team.fusion.Handle(LocalDelta{2.0, "ff2", team.ff2_map.Integrate({Wall(-5, 2, 4, 2)}, "ff2")});
     return team.fusion.GlobalSnapshot();
   };
-  const auto at_y = [](const line_map::MapSnapshot& map, double y) {
-    return std::count_if(map.segments.begin(), map.segments.end(), [y](const auto& s) {
+  const line_map::MapSnapshot global = run(FusionOptions{});
+  ASSERT_EQ(global.segments.size(), 2u);
+  for (const line_map::LineSegment& wall : global.segments) {
+    EXPECT_GT(std::abs(wall.segment.start_m.y() - 2.4), 0.1) << "the drifted copy is out";
+  }
+  // With the rule off the copy is published.
+  FusionOptions off;
+  off.global.lone_duplicate_distance_m = 0.0;
+  EXPECT_EQ(run(off).segments.size(), 3u);
+}
+
+TEST(GlobalMap, PublishesTheLoneWallsOfAnEntityThatDisagreesWithTheOthers) {
+  // ff1 drifted: of its walls along y = 2, which ff2 also saw, 8 m merged and 6 m are a copy
+  // 0.4 m off. The copy is withheld, but its wall at y = 4 that nobody else saw contradicts
+  // nothing: published, with a larger estimated error than ff2's lone wall at y = -3.
+  TwoEntities team;
+  team.fusion.Handle(LocalDelta{
+      1.0, "ff1",
+      team.ff1_map.Integrate({Wall(0, 2, 8, 2), Wall(1, 2.4, 7, 2.4), Wall(0, 4, 8, 4)}, "ff1")});
+  team.fusion.Handle(LocalDelta{
+      2.0, "ff2", team.ff2_map.Integrate({Wall(-10, 2, 2, 2), Wall(-10, -3, -4, -3)}, "ff2")});
+  const line_map::MapSnapshot map = team.fusion.GlobalSnapshot();
+  const auto at_y = [&](double y) {
+    return std::find_if(map.segments.begin(), map.segments.end(), [y](const auto& s) {
       return std::abs(s.segment.start_m.y() - y) < 0.05 && std::abs(s.segment.end_m.y() - y) < 0.05;
     });
   };
-  const line_map::MapSnapshot judged = run(FusionOptions{});
-  EXPECT_EQ(at_y(judged, 2.0), 1);
-  EXPECT_EQ(at_y(judged, 2.4), 0) << "the drifted copy";
-  EXPECT_EQ(at_y(judged, 4.0), 0) << "ff1's lone wall, withheld";
-  EXPECT_EQ(at_y(judged, -3.0), 1) << "ff2's lone wall, published";
+  ASSERT_NE(at_y(2.0), map.segments.end());
+  EXPECT_EQ(at_y(2.4), map.segments.end()) << "the drifted copy";
+  ASSERT_NE(at_y(4.0), map.segments.end()) << "ff1's lone wall";
+  ASSERT_NE(at_y(-3.0), map.segments.end()) << "ff2's lone wall";
+  const auto& support = team.fusion.GlobalSupport();
+  ASSERT_EQ(support.size(), 3u);
+  const WallSupport& both = support.at(at_y(2.0)->id);
+  EXPECT_EQ(both.seen_by, (std::vector<std::string>{"ff1", "ff2"}));
+  const WallSupport& ff1_alone = support.at(at_y(4.0)->id);
+  const WallSupport& ff2_alone = support.at(at_y(-3.0)->id);
+  EXPECT_EQ(ff1_alone.seen_by, std::vector<std::string>{"ff1"});
+  EXPECT_EQ(ff2_alone.seen_by, std::vector<std::string>{"ff2"});
+  // ff1's walls around y = 4: 8 m agree, 6 m are 0.4 m off, over the 5 m prior at 0.05 m.
+  EXPECT_NEAR(ff1_alone.error_sd_m, std::sqrt((5 * 0.0025 + 6 * 0.16) / 19.0), 0.02);
+  EXPECT_LT(ff2_alone.error_sd_m, 0.06);
+  EXPECT_LT(both.error_sd_m, ff2_alone.error_sd_m);
   // The agreement behind it.
   GlobalMap global;
   line_map::LineMap ff1_map, ff2_map;
@@ -188,41 +188,37 @@ TEST(GlobalMap, WithholdsTheLoneWallsOfAnEntityThatDisagreesWithTheOthers) {
   EXPECT_NEAR(global.agreement().at("ff1").disagree_m, 6.0, 1e-6);
   EXPECT_NEAR(global.agreement().at("ff1").rms_offset_m(), 0.4 * std::sqrt(6.0 / 14.0), 1e-3);
   EXPECT_NEAR(global.agreement().at("ff2").ratio(), 1.0, 1e-9);
-  // With a looser promise ff1's lone wall is published; with a strong prior it is too.
-  FusionOptions off;
-  off.global.max_lone_error_m = 0.3;
-  EXPECT_EQ(at_y(run(off), 4.0), 1);
-  FusionOptions little;
-  little.global.prior_evidence_m = 200.0;
-  EXPECT_EQ(at_y(run(little), 4.0), 1);
   FusionOptions bad;
   bad.global.error_radius_m = 0.0;
   EXPECT_THROW(FusionState{bad}, std::invalid_argument);
 }
 
-TEST(GlobalMap, PublishesTheLoneWallsOfADriftedEntityFarFromWhereItDisagrees) {
-  // ff1's walls disagree with ff2's around x = 0..8 (a copy 0.4 m off) but that says nothing of
-  // the wall it alone saw 60 m away, where it was before it drifted: published. Near the
-  // disagreement its lone wall is withheld.
+TEST(GlobalMap, KeepsTheCopyOfTheEntityWhoseWallsAgreeAroundItAndCreditsTheOther) {
+  // All three saw y = 0; ff1 and ff3 saw y = 3 where ff2 put it at 3.3 (its walls are off here).
+  // ff1 and ff2 alone saw the wall at y = 6, 0.25 m apart: ff1's is published, seen by both.
   FusionState fusion;
-  fusion.Handle(EntityJoin{0.0, "ff1", geometry::Pose2{}});
-  fusion.Handle(EntityJoin{0.0, "ff2", geometry::Pose2{}});
-  line_map::LineMap ff1_map, ff2_map;
+  for (const char* id : {"ff1", "ff2", "ff3"}) fusion.Handle(EntityJoin{0.0, id, geometry::Pose2{}});
+  line_map::LineMap ff1_map, ff2_map, ff3_map;
   fusion.Handle(LocalDelta{1.0, "ff1",
-                           ff1_map.Integrate({Wall(0, 2, 8, 2), Wall(1, 2.4, 7, 2.4),
-                                              Wall(0, 4, 8, 4), Wall(60, 4, 68, 4)},
+                           ff1_map.Integrate({Wall(0, 0, 10, 0), Wall(0, 3, 10, 3), Wall(0, 6, 10, 6)},
                                              "ff1")});
-  fusion.Handle(LocalDelta{2.0, "ff2", ff2_map.Integrate({Wall(0, 2, 12, 2)}, "ff2")});
+  fusion.Handle(LocalDelta{2.0, "ff2",
+                           ff2_map.Integrate({Wall(0, 0, 10, 0), Wall(0, 3.3, 10, 3.3),
+                                              Wall(0, 6.25, 10, 6.25)},
+                                             "ff2")});
+  fusion.Handle(LocalDelta{3.0, "ff3", ff3_map.Integrate({Wall(0, 0, 10, 0), Wall(0, 3, 10, 3)}, "ff3")});
   const line_map::MapSnapshot map = fusion.GlobalSnapshot();
-  const auto has = [&](double x, double y) {
-    return std::any_of(map.segments.begin(), map.segments.end(), [&](const auto& s) {
-      return std::abs(s.segment.start_m.y() - y) < 0.05 && s.segment.start_m.x() < x + 1.0 &&
-             s.segment.end_m.x() > x - 1.0;
-    });
-  };
-  EXPECT_TRUE(has(4.0, 2.0));
-  EXPECT_FALSE(has(4.0, 4.0)) << "near where ff1 disagrees";
-  EXPECT_TRUE(has(64.0, 4.0)) << "far from it";
+  ASSERT_EQ(map.segments.size(), 3u) << "one wall each at y = 0, 3, 6";
+  const auto& support = fusion.GlobalSupport();
+  for (const line_map::LineSegment& wall : map.segments) {
+    const double y = wall.segment.start_m.y();
+    EXPECT_TRUE(std::abs(y) < 0.01 || std::abs(y - 3.0) < 0.01 || std::abs(y - 6.0) < 0.01) << y;
+    const std::vector<std::string> seen_by = support.at(wall.id).seen_by;
+    EXPECT_TRUE(Has(seen_by, "ff1") && Has(seen_by, "ff2")) << y;
+    if (std::abs(y - 6.0) < 0.01) {
+      EXPECT_EQ(wall.provenance.size(), 1u) << "ff1's geometry";
+    }
+  }
 }
 
 TEST(GlobalMap, WithholdsAWallTwoUntrustedEntitiesSawAlongAPlanWallTheyDoNotConfirm) {

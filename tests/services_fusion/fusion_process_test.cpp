@@ -11,6 +11,8 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
+#include <string>
 
 #include "dds_endpoints.hpp"
 #include "from_dds.hpp"
@@ -191,6 +193,25 @@ TEST(FusionProcess, TeamGlobalMapCoversObservedWallsAndLateJoinerGetsItWithinTwo
   }
   const auto rows = io::ReadLineCsv(run / "fusion" / "global_map.csv");
   EXPECT_EQ(rows.size(), listener.map.size());
+  // Who saw each wall and its estimated error: one line per global wall, in id order.
+  std::istringstream support(testing::ReadFile(run / "fusion" / "global_wall_support.csv"));
+  std::string line;
+  std::getline(support, line);
+  EXPECT_EQ(line, "id,seen_by,error_sd_m");
+  std::size_t supported = 0;
+  for (; std::getline(support, line); ++supported) {
+    ASSERT_LT(supported, rows.size()) << line;
+    const std::size_t comma = line.find(',');
+    EXPECT_EQ(line.substr(0, comma), std::to_string(rows[supported].id)) << line;
+    const std::string seen_by = line.substr(comma + 1, line.rfind(',') - comma - 1);
+    EXPECT_FALSE(seen_by.empty()) << line;
+    const double sd_m = std::stod(line.substr(line.rfind(',') + 1));
+    EXPECT_TRUE(sd_m >= 0.0 && sd_m < 1.0) << line;
+    if (seen_by == "plan") {
+      EXPECT_EQ(sd_m, 0.0) << line;
+    }
+  }
+  EXPECT_EQ(supported, rows.size());
   const auto observed = io::ReadLineCsv(TeamMission() / "observed.csv");
   std::vector<geometry::Segment2> walls;
   for (const io::LineRow& row : observed) walls.push_back(row.segment);

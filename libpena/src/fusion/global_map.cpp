@@ -6,8 +6,8 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "lone_walls.hpp"
 #include "plan_overlay.hpp"
+#include "wall_evidence.hpp"
 
 namespace pena::fusion {
 namespace {
@@ -144,30 +144,35 @@ line_map::MapSnapshot GlobalMap::Snapshot() const {
 
 line_map::MapDelta GlobalMap::Rebuild(const std::vector<MergeSource>& sources) {
   std::vector<LineSegment> fresh = MergeAll(sources, options_.merge);
-  // The plan confirms observed walls (their plan keys) before the lone ones are judged; its
-  // pieces are laid under what is left, so a plan wall is shown where a withheld wall was.
+  // The plan confirms observed walls (their plan keys) before the walls are judged; its pieces
+  // are laid under what is left, so a plan wall is shown where a withheld wall was.
   PlanPieces(sources, fresh, options_);
   std::vector<geometry::Segment2> plan;
   for (const MergeSource& source : sources) {
     if (!source.plan) continue;
     for (const LineSegment& wall : source.segments) plan.push_back(wall.segment);
   }
-  agreement_ = detail::DropLoneWalls(fresh, SegmentByKey(sources), plan, options_);
+  detail::WallJudgement judgement = detail::JudgeWalls(fresh, SegmentByKey(sources), plan, options_);
+  agreement_ = std::move(judgement.agreement);
   const std::vector<LineSegment> plan_pieces = PlanPieces(sources, fresh, options_);
   fresh.insert(fresh.end(), plan_pieces.begin(), plan_pieces.end());
+  judgement.support.resize(fresh.size(), WallSupport{{"plan"}, 0.0});
   const std::vector<LineSegment> old = published_.segments();
   const std::vector<std::int64_t> ids = MatchIds(fresh, old);
   line_map::MapDelta delta;
   delta.from_version = published_.version();
   std::unordered_map<std::int64_t, const LineSegment*> old_by_id;
   for (const LineSegment& segment : old) old_by_id.emplace(segment.id, &segment);
+  support_.clear();
   for (std::size_t i = 0; i < fresh.size(); ++i) {
     if (ids[i] == 0) {
       fresh[i].id = next_id_++;
+      support_[fresh[i].id] = std::move(judgement.support[i]);
       delta.added.push_back(fresh[i]);
       continue;
     }
     fresh[i].id = ids[i];
+    support_[fresh[i].id] = std::move(judgement.support[i]);
     const LineSegment& before = *old_by_id.at(ids[i]);
     old_by_id.erase(ids[i]);
     if (!line_map::SameSegment(before, fresh[i])) delta.changed.push_back(fresh[i]);

@@ -112,6 +112,8 @@ class FusionState {
   // The global map as a late joiner gets it: apply later global deltas on top.
   line_map::MapSnapshot GlobalSnapshot() const { return global_.Snapshot(); }
   std::uint64_t global_version() const { return global_.version(); }
+  // Who saw each global wall and its estimated error, by id (GlobalMap::support()).
+  const std::map<std::int64_t, WallSupport>& GlobalSupport() const { return global_.support(); }
   // Status of one entity, nullptr if unknown.
   const EntityStatus* entity(const std::string& entity_id) const;
   // Ids of all known entities, sorted.

@@ -52,6 +52,16 @@ struct EntityAgreement {
   }
 };
 
+// Who saw a published wall and how well it is placed.
+struct WallSupport {
+  // Entities whose walls are in it or were withheld as its copies, and "plan" if it confirms or
+  // is a plan wall; sorted.
+  std::vector<std::string> seen_by;
+  // Estimated sd of the wall's position error, m: its entities' wall error around it (the noise
+  // model of docs/fusion.md step 3), combined over its entities; 0 for a plan-only piece.
+  double error_sd_m = 0.0;
+};
+
 // Provenance key of a source segment: "<source>:<segment id>" (e.g. "ff1:12", "plan:3").
 std::string ProvenanceKey(const std::string& source, std::int64_t segment_id);
 
@@ -69,6 +79,9 @@ class GlobalMap {
   line_map::MapDelta Rebuild(const std::vector<MergeSource>& sources);
   // Each entity's agreement at the last Rebuild (entities with nothing compared are absent).
   const std::map<std::string, EntityAgreement>& agreement() const { return agreement_; }
+  // Each published wall's support at the last Rebuild, by id (empty after FromSnapshot until the
+  // next Rebuild).
+  const std::map<std::int64_t, WallSupport>& support() const { return support_; }
 
   // The published map (segments sorted by id).
   line_map::MapSnapshot Snapshot() const;
@@ -81,6 +94,7 @@ class GlobalMap {
   line_map::LineMap published_;  // receives its own deltas: what a late joiner rebuilds
   std::int64_t next_id_ = 1;
   std::map<std::string, EntityAgreement> agreement_;  // of the last Rebuild (diagnostics)
+  std::map<std::int64_t, WallSupport> support_;       // of the last Rebuild, by published id
 };
 
 }  // namespace pena::fusion
