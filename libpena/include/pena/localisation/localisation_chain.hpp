@@ -11,6 +11,7 @@
 #include "pena/geometry/segment2.hpp"
 #include "pena/localisation/global_localiser.hpp"
 #include "pena/localisation/global_tracker.hpp"
+#include "pena/localisation/localised_pose.hpp"
 #include "pena/localisation/lost_and_found.hpp"
 #include "pena/localisation/map_localiser.hpp"
 #include "pena/odometry/laser_odometry.hpp"
@@ -40,22 +41,6 @@ struct LocalisationChainOptions {
   // Lost and found once anchored: lost judged from evidence, then searched for in a growing
   // region and over the whole plan (docs/localisation.md, "Lost and found").
   LostAndFoundOptions lost;
-};
-
-// The estimate at one scan.
-struct LocalisedPose {
-  double stamp_s = 0.0;
-  geometry::Pose2 map_from_body;          // on the plan
-  odometry::OdometryEstimate odometry;    // the odometry's own estimate (its world frame)
-  MapStatus status = MapStatus::kUnknown; // after this scan
-  std::optional<MapCorrection> correction;     // a match round ran at this scan
-  std::optional<GlobalResult> global;          // the followed global hypotheses at this scan
-  bool global_searched = false;                // a whole-plan search ran at this scan
-  bool anchored = false;                  // the odometry frame is placed on the plan
-  bool relocalising = false;              // lost: global hypotheses are followed (relocalise_after_rounds)
-  bool lost = false;                      // judged lost (LostAndFound) after this scan
-  bool found = false;                     // found again at this scan (placed anew or by a plan round)
-  std::optional<double> lost_search_radius_m;  // a lost search ran at this scan (0: whole plan)
 };
 
 // The chain for one entity. Not thread-safe.
