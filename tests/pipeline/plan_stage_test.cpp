@@ -265,6 +265,16 @@ OffStart RunFromWrongStart(int relocalise_after_rounds, bool lost_and_found, con
   return out;
 }
 
+// Placed anew on the plan, and right from then on (every scan within 0.3 m RMS), and at the end.
+void ExpectFoundAndKept(const OffStart& found) {
+  EXPECT_TRUE(found.relocalised);
+  EXPECT_GT(found.scans_since_relocalised, 50);
+  EXPECT_LT(found.RmsSinceRelocalisedM(), 0.3);
+  EXPECT_NEAR(found.estimate.x_m, found.truth.x_m, 0.6);
+  EXPECT_NEAR(found.estimate.y_m, found.truth.y_m, 0.3);
+  EXPECT_NEAR(geometry::NormalizeAngle(found.estimate.theta_rad - found.truth.theta_rad), 0.0, 3.0 * kDeg);
+}
+
 // An entity put 3 m off across the mapped corridor and 30 deg off in heading is beyond the plan
 // window (3.2 m x 20 deg at most): the plan rounds fail for good. With relocalisation the whole
 // plan is searched after a few lost rounds and the walk east along the main corridor (office
@@ -275,12 +285,7 @@ TEST(PlanStage, ALostEntityInAMappedCorridorIsRelocalised) {
   EXPECT_GT(std::hypot(lost.estimate.x_m - lost.truth.x_m, lost.estimate.y_m - lost.truth.y_m), 1.0);
   EXPECT_FALSE(lost.relocalised);
   const OffStart found = RunFromWrongStart(3, false, offset, 150.0, 150);
-  EXPECT_TRUE(found.relocalised);
-  EXPECT_GT(found.scans_since_relocalised, 50);
-  EXPECT_LT(found.RmsSinceRelocalisedM(), 0.3);
-  EXPECT_NEAR(found.estimate.x_m, found.truth.x_m, 0.6);
-  EXPECT_NEAR(found.estimate.y_m, found.truth.y_m, 0.3);
-  EXPECT_NEAR(geometry::NormalizeAngle(found.estimate.theta_rad - found.truth.theta_rad), 0.0, 3.0 * kDeg);
+  ExpectFoundAndKept(found);
 }
 
 // The same entity with lost and found on: judged lost from the plan's evidence (rounds failing
@@ -288,12 +293,7 @@ TEST(PlanStage, ALostEntityInAMappedCorridorIsRelocalised) {
 // found again, with no relocalisation option.
 TEST(PlanStage, AKidnappedEntityInAMappedCorridorIsFoundWithLostAndFound) {
   const OffStart found = RunFromWrongStart(0, true, {0.0, 3.0, 30.0 * kDeg}, 150.0, 150);
-  EXPECT_TRUE(found.relocalised);
-  EXPECT_GT(found.scans_since_relocalised, 50);
-  EXPECT_LT(found.RmsSinceRelocalisedM(), 0.3);
-  EXPECT_NEAR(found.estimate.x_m, found.truth.x_m, 0.6);
-  EXPECT_NEAR(found.estimate.y_m, found.truth.y_m, 0.3);
-  EXPECT_NEAR(geometry::NormalizeAngle(found.estimate.theta_rad - found.truth.theta_rad), 0.0, 3.0 * kDeg);
+  ExpectFoundAndKept(found);
 }
 
 // Bad plan-stage options are refused when the pipeline is built, naming the field; an unknown
