@@ -1,6 +1,6 @@
 // Global localisation on the simulated `office` mission (its acceptance figure): the firefighter's
 // log is started at random scans whose true pose is in the mapped corridor (y 13-15 m,
-// x 4.5-41.5 m), with no start pose, and run through LocalisationChain with global_start on the
+// x 4.5-41.5 m), with no start pose, and run through the entity pipeline's plan stage (global_start) on the
 // partial, partly wrong a priori plan until it anchors. Prints how many anchor within 0.3 m and
 // 3 deg of the true pose at the anchoring scan, the median CPU time and walked distance until
 // then, and for comparison how many of the first scans alone were right (best hypothesis of the
@@ -14,21 +14,21 @@
 // The headline runs each start until it anchors or the log ends (then the leader is the answer);
 // beside it, the same starts cut at 30 m of walk (an unanchored start answered by the leader
 // then). The count of starts the log leaves less than 1 m / 3 m of
-// walk after is printed. The log goes in as `pena localise` takes it: a person's strides spread
-// over the scans inside them (PENA_BENCH_SET=odometry.stride_interpolation.enabled=0: as logged).
+// walk after is printed. The log goes in as `pena localise` takes it: the pipeline spreads a
+// person's strides over the scans inside them (PENA_BENCH_SET=odometry.stride_interpolation.enabled=0: as logged).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <deque>
 #include <numbers>
 #include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
-#include "pena/dead_reckoning/human_dead_reckoning.hpp"
-#include "pena/localisation/localisation_chain.hpp"
+#include "pena/pipeline/entity_pipeline.hpp"
 #include "pena/sim/scenario.hpp"
 #include "pena/sim/simulator.hpp"
 
@@ -95,7 +95,8 @@ struct Trial {
 // PENA_BENCH_SET=name=value,...: tracker options (and the chain's compass_tolerance_deg and a few
 // odometry options, prefixed "odometry.") for
 // comparing variants on the same starts.
-void ApplySettings(localisation::LocalisationChainOptions& chain) {
+void ApplySettings(pipeline::EntityPipelineOptions& options) {
+  pipeline::PlanLocalisationOptions& chain = options.plan_localisation;
   localisation::GlobalTrackerOptions& o = chain.tracker;
   const char* list = std::getenv("PENA_BENCH_SET");
   if (!list) return;
@@ -130,12 +131,12 @@ void ApplySettings(localisation::LocalisationChainOptions& chain) {
     // The whole-plan localiser underneath (beam agreement, docs/localisation.md).
     else if (name == "agreement_tolerance_m") chain.global.agreement_tolerance_m = value;
     // The odometry underneath (docs/odometry.md).
-    else if (name == "odometry.max_stride_period_s") chain.odometry.dead_reckoning.max_stride_period_s = value;
-    else if (name == "odometry.stride_interpolation.enabled") chain.odometry.dead_reckoning.stride_interpolation.enabled = value != 0.0;
-    else if (name == "odometry.stopped_stride_fraction") chain.odometry.dead_reckoning.stopped_stride_fraction = value;
-    else if (name == "odometry.turning_on_the_spot_rad_s") chain.odometry.dead_reckoning.turning_on_the_spot_rad_s = value;
-    else if (name == "odometry.overdue_turn_rad") chain.odometry.dead_reckoning.overdue_turn_rad = value;
-    else if (name == "odometry.local_map_keyframes") chain.odometry.local_map_keyframes = static_cast<int>(value);
+    else if (name == "odometry.max_stride_period_s") options.odometry.dead_reckoning.max_stride_period_s = value;
+    else if (name == "odometry.stride_interpolation.enabled") options.odometry.dead_reckoning.stride_interpolation.enabled = value != 0.0;
+    else if (name == "odometry.stopped_stride_fraction") options.odometry.dead_reckoning.stopped_stride_fraction = value;
+    else if (name == "odometry.turning_on_the_spot_rad_s") options.odometry.dead_reckoning.turning_on_the_spot_rad_s = value;
+    else if (name == "odometry.overdue_turn_rad") options.odometry.dead_reckoning.overdue_turn_rad = value;
+    else if (name == "odometry.local_map_keyframes") options.odometry.local_map_keyframes = static_cast<int>(value);
     else {
       std::fprintf(stderr, "PENA_BENCH_SET: unknown tracker option %s\n", name.c_str());
       std::exit(2);
@@ -170,30 +171,35 @@ Trial Run(const sim::EntityRecording& entity, const std::vector<geometry::Segmen
   const bool trace = std::getenv("PENA_BENCH_TRACE") != nullptr;
   // Diagnosis: the first scan's figures only (the first search, the odometry's starting heading).
   const bool first_scan_only = std::getenv("PENA_BENCH_FIRST_SCAN_ONLY") != nullptr;
-  localisation::LocalisationChainOptions options;
-  options.global_start = true;
+  pipeline::EntityPipelineOptions options;
+  options.build_line_map = false;
+  options.plan_localisation.global_start = true;
+  options.plan_localisation.lost.enabled = true;  // as `pena localise`
   ApplySettings(options);
   const sensors::GroundTruth& first_truth = std::get<sensors::GroundTruth>(entity.records[start]);
   trial.start_truth = first_truth.world_from_body;
   const std::clock_t cpu_start = std::clock();
-  localisation::LocalisationChain chain(options, entity.kind, plan, geometry::Pose2{}, first_truth.stamp_s);
+  pipeline::EntityPipeline chain(options, entity.kind, entity.id, geometry::Pose2{}, first_truth.stamp_s);
+  chain.SetPlan(plan);
   geometry::Pose2 truth = first_truth.world_from_body;
   std::optional<geometry::Pose2> previous;
   bool first_scan = true;
-  // The stream as the tools take it (pena localise: a person's strides spread over its scans).
-  std::vector<sensors::SensorRecord> records = dead_reckoning::SpreadStrides(
-      {entity.records.begin() + static_cast<std::ptrdiff_t>(start), entity.records.end()},
-      dead_reckoning::SpreadOptionsOf(options.odometry.dead_reckoning));
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    if (const auto* t = std::get_if<sensors::GroundTruth>(&records[i])) {
-      truth = t->world_from_body;
-      if (previous) trial.walked_m += std::hypot(truth.x_m - previous->x_m, truth.y_m - previous->y_m);
-      previous = truth;
-      if (!trial.cut && trial.walked_m >= kWalkLimit_m && trial.leader) trial.cut = Compare(*trial.leader, trial.leader_truth);
-      continue;
+  // The truth records read and not yet passed by a scan: the pipeline gives a person's scans when
+  // their stride ends, and each truth record counts (walk, cut) just before its scan.
+  std::deque<sensors::GroundTruth> truths;
+  const auto pass_truth = [&](const sensors::GroundTruth& t) {
+    truth = t.world_from_body;
+    if (previous) trial.walked_m += std::hypot(truth.x_m - previous->x_m, truth.y_m - previous->y_m);
+    previous = truth;
+    if (!trial.cut && trial.walked_m >= kWalkLimit_m && trial.leader) trial.cut = Compare(*trial.leader, trial.leader_truth);
+  };
+  // One scan's report; true when the trial is over.
+  const auto on_scan = [&](const pipeline::ScanStep& step) {
+    while (!truths.empty() && truths.front().stamp_s <= step.odometry.stamp_s) {
+      pass_truth(truths.front());
+      truths.pop_front();
     }
-    const std::optional<localisation::LocalisedPose> pose = chain.Add(records[i]);
-    if (!pose) continue;
+    const localisation::LocalisedPose* pose = &*step.plan;
     trial.searches += pose->global_searched ? 1 : 0;
     if (first_scan && pose->global && !pose->global->hypotheses.empty()) {
       trial.first_found = true;
@@ -204,23 +210,38 @@ Trial Run(const sim::EntityRecording& entity, const std::vector<geometry::Segmen
           std::abs(geometry::NormalizeAngle(pose->odometry.world_from_body.theta_rad - truth.theta_rad)) / kDeg;
     }
     first_scan = false;
-    if (first_scan_only) break;
+    if (first_scan_only) return true;
     if (pose->global && !pose->global->hypotheses.empty()) {
       trial.leader = pose->global->hypotheses.front().map_from_body, trial.leader_truth = truth;
       if (trace) {
-        const auto& scan = std::get<sensors::LaserScan>(records[i]);
-        std::printf("  returns %.2f", static_cast<double>(scan.CountReturns()) / static_cast<double>(scan.ranges_m.size()));
+        std::printf("  returns %.2f", static_cast<double>(step.scan.CountReturns()) / static_cast<double>(step.scan.ranges_m.size()));
         Trace(*pose->global, truth, trial.walked_m);
       }
     }
-    if (!pose->anchored) continue;
+    if (!pose->anchored) return false;
     trial.anchored = true;
     trial.anchor = Compare(pose->map_from_body, truth);
     trial.anchor_truth = truth;
     trial.anchor_estimate = pose->map_from_body;
     trial.mission_s = pose->stamp_s - first_truth.stamp_s;
     if (!trial.cut) trial.cut = trial.anchor, trial.cut_anchored = true;
-    break;
+    return true;
+  };
+  bool over = false;
+  for (std::size_t i = start; i < entity.records.size() && !over; ++i) {
+    if (const auto* t = std::get_if<sensors::GroundTruth>(&entity.records[i])) {
+      truths.push_back(*t);
+      continue;
+    }
+    chain.Push(entity.records[i]);
+    while (const std::optional<pipeline::ScanStep> step = over ? std::nullopt : chain.Next()) over = on_scan(*step);
+  }
+  if (!over) {
+    chain.EndOfInput();
+    while (const std::optional<pipeline::ScanStep> step = over ? std::nullopt : chain.Next()) over = on_scan(*step);
+  }
+  if (!over) {
+    for (const sensors::GroundTruth& t : truths) pass_truth(t);
   }
   trial.cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   if (!trial.anchored && trial.leader) {

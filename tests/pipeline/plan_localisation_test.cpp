@@ -98,7 +98,7 @@ TEST(PlanLocalisation, RefusesAnEmptyPlanOrBadOptions) {
   EXPECT_THROW(pipeline.SetPlan({}), std::invalid_argument);
   EXPECT_FALSE(pipeline.has_plan());
   EntityPipelineOptions options;
-  options.plan_localisation.min_hits = 0;
+  options.plan_localisation.map.min_hits = 0;
   EntityPipeline bad(options, ff1.kind, ff1.id, ff1.truth.front().world_from_body, ff1.start_s);
   try {
     bad.SetPlan(Plan());

@@ -1,7 +1,7 @@
-// pena localise: localisation on an a priori plan (paper section 4): the laser odometry with
-// virtual scan matching against the plan, optionally starting from a global localisation. Writes
-// DIR/trajectory.tum, status.csv, summary.json and localisation.png. Options, outputs and the
-// measured figures: docs/localisation.md.
+// pena localise: localisation on an a priori plan (paper section 4): the entity pipeline with its
+// plan stage (virtual scan matching against the plan, optionally starting from a global
+// localisation, lost and found). Writes DIR/trajectory.tum, status.csv, summary.json and
+// localisation.png. Options, outputs and the measured figures: docs/localisation.md.
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -15,13 +15,13 @@
 
 #include "cli_support.hpp"
 #include "cmd_localise.hpp"
-#include "spread_source.hpp"
 #include "commands.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/plan_reader.hpp"
 #include "pena/io/trajectory_io.hpp"
-#include "pena/localisation/localisation_chain.hpp"
 #include "pena/localisation/trajectory_smoother.hpp"
+#include "pena/pipeline/entity_pipeline.hpp"
+#include "pena/pipeline/start_pose.hpp"
 
 namespace pena::cli {
 namespace localise {
@@ -59,7 +59,19 @@ std::vector<geometry::Segment2> LoadPlan(const LocaliseArgs& args) {
   return plan;
 }
 
-Run RunChain(const LocaliseArgs& args, io::LogSource& source, std::vector<geometry::Segment2> plan) {
+// The pipeline's options for this run: the odometry's and the plan stage's, with lost and found
+// on; no line map (the poses are the output).
+pipeline::EntityPipelineOptions PipelineOptionsOf(const LocaliseArgs& args) {
+  pipeline::EntityPipelineOptions options;
+  options.build_line_map = false;
+  options.plan_localisation.global_start = args.global;
+  options.plan_localisation.map.every_scan = args.every_scan;
+  options.plan_localisation.lost.enabled = true;
+  ApplySettings(args.settings, options);
+  return options;
+}
+
+Run RunPipeline(const LocaliseArgs& args, io::LogSource& source, std::vector<geometry::Segment2> plan) {
   const auto started = Clock::now();
   std::vector<sensors::SensorRecord> read_ahead;
   while (auto record = source.Next()) {
@@ -71,30 +83,34 @@ Run RunChain(const LocaliseArgs& args, io::LogSource& source, std::vector<geomet
   const StartPose rule = StartPoseOf(read_ahead, source);
   const geometry::Pose2 start = args.start.empty() ? rule.world_from_body : ParsePose(args.start, "--start");
   run.start_source = args.global ? "global" : args.start.empty() ? rule.source : "--start";
-  localisation::LocalisationChainOptions options;
-  options.global_start = args.global;
-  options.map.every_scan = args.every_scan;
-  ApplySettings(args.settings, options);
   const double start_stamp_s = read_ahead.empty() ? 0.0 : sensors::StampOf(read_ahead.front());
-  localisation::LocalisationChain chain(options, source.description().kind.value_or(sensors::EntityKind::kRobot),
-                                        std::move(plan), start, start_stamp_s);
+  const io::LogDescription& description = source.description();
+  pipeline::EntityPipeline chain(PipelineOptionsOf(args), description.kind.value_or(sensors::EntityKind::kRobot),
+                                 description.entity_id.empty() ? "entity" : description.entity_id, start,
+                                 start_stamp_s);
+  chain.SetPlan(std::move(plan));
   ProgressLine progress(!args.quiet);
-  const auto feed = [&](const sensors::SensorRecord& record) {
-    ++run.records;
-    std::optional<localisation::LocalisedPose> pose = chain.Add(record);
-    if (!pose) return;
-    if (pose->correction) run.rounds.push_back(*pose->correction), run.round_lost.push_back(pose->lost);
-    if (pose->global) {
+  const auto take = [&](const pipeline::ScanStep& step) {
+    const localisation::LocalisedPose& pose = *step.plan;
+    if (pose.correction) run.rounds.push_back(*pose.correction), run.round_lost.push_back(pose.lost);
+    if (pose.global) {
       ++run.global_attempts;
-      if (pose->anchored) run.global = pose->global, run.global_stamp_s = pose->stamp_s;
+      if (pose.anchored) run.global = pose.global, run.global_stamp_s = pose.stamp_s;
     }
-    run.poses.push_back(std::move(*pose));
+    run.poses.push_back(pose);
     if (progress.Due(SecondsSince(started))) {
       progress.Show(SecondsSince(started), "pena localise: " + std::to_string(run.poses.size()) + " scans");
     }
   };
-  for (const sensors::SensorRecord& record : read_ahead) feed(record);
-  while (const auto record = source.Next()) feed(*record);
+  const auto feed = [&](sensors::SensorRecord record) {
+    ++run.records;
+    chain.Push(std::move(record));
+    while (const std::optional<pipeline::ScanStep> step = chain.Next()) take(*step);
+  };
+  for (sensors::SensorRecord& record : read_ahead) feed(std::move(record));
+  while (auto record = source.Next()) feed(std::move(*record));
+  chain.EndOfInput();  // what the stride spreading still holds
+  while (const std::optional<pipeline::ScanStep> step = chain.Next()) take(*step);
   run.wall_s = SecondsSince(started);
   run.plan_shifts = chain.plan_shifts();
   run.plan_openings = chain.plan_openings();
@@ -140,13 +156,11 @@ void PrintResult(const LocaliseArgs& args, const Run& run, const std::optional<T
 void RunLocalise(const LocaliseArgs& args) {
   const localisation::TrajectorySmootherOptions smoother = SmootherOptions(args.settings);  // names first
   const std::vector<geometry::Segment2> plan = LoadPlan(args);
-  localisation::LocalisationChainOptions read_options;  // for the stream's own (stride spreading)
-  ApplySettings(args.settings, read_options);
-  const std::unique_ptr<io::LogSource> source =
-      OpenChainLog(args.log, args.read, read_options.odometry.dead_reckoning);
+  (void)PipelineOptionsOf(args);  // a bad --set is an error before the output directory is made
+  const std::unique_ptr<io::LogSource> source = io::OpenLog(args.log, args.read);
   const std::filesystem::path out_dir(args.out);
   std::filesystem::create_directories(out_dir);
-  const Run run = RunChain(args, *source, plan);
+  const Run run = RunPipeline(args, *source, plan);
   const geometry::Trajectory online = Trajectory(run);
   const geometry::Trajectory estimate = args.smooth ? Smoothed(run, smoother) : online;
   io::WriteTum(out_dir / "trajectory.tum", estimate);

@@ -13,8 +13,12 @@
 #include "pena/geometry/segment2.hpp"
 #include "pena/geometry/trajectory.hpp"
 #include "pena/io/log_source.hpp"
-#include "pena/localisation/localisation_chain.hpp"
+#include "pena/localisation/global_localiser.hpp"
+#include "pena/localisation/localised_pose.hpp"
+#include "pena/localisation/map_localiser.hpp"
+#include "pena/localisation/plan_openings.hpp"
 #include "pena/localisation/trajectory_smoother.hpp"
+#include "pena/pipeline/entity_pipeline.hpp"
 
 namespace pena::cli::localise {
 
@@ -96,9 +100,10 @@ Counts CountRun(const Run& run);
 void WriteSummary(const std::filesystem::path& path, const LocaliseArgs& args, const Run& run,
                   const std::optional<TruthErrors>& truth, const std::optional<TruthErrors>& truth_online);
 
-// --set NAME=VALUE (cmd_localise_settings.cpp): the chain's options, and with --smooth the
-// smoother's (smooth.NAME); unknown names are errors (AddLocaliseCommand refuses smooth.* without --smooth).
-void ApplySettings(const std::vector<std::string>& settings, localisation::LocalisationChainOptions& chain);
+// --set NAME=VALUE (cmd_localise_settings.cpp): the pipeline's odometry and plan-stage options,
+// and with --smooth the smoother's (smooth.NAME); unknown names are errors (AddLocaliseCommand
+// refuses smooth.* without --smooth).
+void ApplySettings(const std::vector<std::string>& settings, pipeline::EntityPipelineOptions& options);
 localisation::TrajectorySmootherOptions SmootherOptions(const std::vector<std::string>& settings);
 
 // DIR/plan-adapted.csv: the plan as matched at the end (line CSV, the input's segment order and

@@ -12,18 +12,19 @@ namespace pena::cli::localise {
 
 // Applies --set NAME=VALUE to the plan-matching options (names as in MapLocaliserOptions) and,
 // prefixed "odometry.", to the odometry underneath (the names of `pena odometry --set`), and
-// global.compass_tolerance_deg (LocalisationChainOptions::compass_tolerance_rad, in degrees),
+// global.compass_tolerance_deg (PlanLocalisationOptions::compass_tolerance_rad, in degrees),
 // global.freeze_history_keyframes, global.boundary_fraction, global.freeze_ranking,
 // global.answer_on_plan (0/1), global.return_fit_keyframes, global.min_followed_keyframes,
 // global.min_decide_return_fraction, global.min_decide_return_keyframes and global.min_travel_m
 // (GlobalTrackerOptions),
 // global.agreement_tolerance_m (GlobalLocaliserOptions), relocalise_after_rounds
-// (LocalisationChainOptions, plan rounds; 0 = off), plan_adaptation.* (PlanAdaptationOptions) and
+// (PlanLocalisationOptions, plan rounds; 0 = off), plan_adaptation.* (PlanAdaptationOptions) and
 // lost.* (LostAndFoundOptions);
-// integer options are rounded; unknown names are errors. The options are validated by
-// MapLocaliser's constructor as usual.
-void ApplySettings(const std::vector<std::string>& settings, localisation::LocalisationChainOptions& chain) {
-  localisation::MapLocaliserOptions& o = chain.map;
+// integer options are rounded; unknown names are errors. The values are validated by the
+// pipeline (its constructor and SetPlan).
+void ApplySettings(const std::vector<std::string>& settings, pipeline::EntityPipelineOptions& options) {
+  pipeline::PlanLocalisationOptions& plan = options.plan_localisation;
+  localisation::MapLocaliserOptions& o = plan.map;
   constexpr std::string_view kOdometry = "odometry.";
   constexpr std::string_view kSmooth = "smooth.";
   std::vector<std::string> odometry_settings;
@@ -61,36 +62,36 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                      {"plan_adaptation.ends.past_m", &o.plan_adaptation.ends.past_m},
                      {"plan_adaptation.ends.max_spread_m", &o.plan_adaptation.ends.max_spread_m},
                      {"plan_adaptation.ends.min_error_m", &o.plan_adaptation.ends.min_error_m},
-                     {"global.boundary_fraction", &chain.tracker.boundary_fraction},
-                     {"global.agreement_tolerance_m", &chain.global.agreement_tolerance_m},
-                     {"global.min_decide_return_fraction", &chain.tracker.min_decide_return_fraction},
-                     {"global.min_travel_m", &chain.tracker.min_travel_m},
-                     {"lost.lost_explained_fraction", &chain.lost.lost_explained_fraction},
-                     {"lost.lost_sigma_m", &chain.lost.lost_sigma_m},
-                     {"lost.region_start_m", &chain.lost.region_start_m},
-                     {"lost.region_growth", &chain.lost.region_growth},
-                     {"lost.search_every_m", &chain.lost.search_every_m},
-                     {"lost.found_explained_fraction", &chain.lost.found_explained_fraction},
-                     {"lost.found_margin", &chain.lost.found_margin}};
+                     {"global.boundary_fraction", &plan.tracker.boundary_fraction},
+                     {"global.agreement_tolerance_m", &plan.global.agreement_tolerance_m},
+                     {"global.min_decide_return_fraction", &plan.tracker.min_decide_return_fraction},
+                     {"global.min_travel_m", &plan.tracker.min_travel_m},
+                     {"lost.lost_explained_fraction", &plan.lost.lost_explained_fraction},
+                     {"lost.lost_sigma_m", &plan.lost.lost_sigma_m},
+                     {"lost.region_start_m", &plan.lost.region_start_m},
+                     {"lost.region_growth", &plan.lost.region_growth},
+                     {"lost.search_every_m", &plan.lost.search_every_m},
+                     {"lost.found_explained_fraction", &plan.lost.found_explained_fraction},
+                     {"lost.found_margin", &plan.lost.found_margin}};
   targets.ints = {{"min_hits", &o.min_hits},
                   {"outside_after_failures", &o.outside_after_failures},
                   {"oversample", &o.oversample},
-                  {"global.freeze_history_keyframes", &chain.tracker.freeze_history_keyframes},
-                  {"global.freeze_ranking", &chain.tracker.freeze_ranking},
-                  {"global.return_fit_keyframes", &chain.tracker.return_fit_keyframes},
-                  {"global.min_followed_keyframes", &chain.tracker.min_followed_keyframes},
-                  {"global.min_decide_return_keyframes", &chain.tracker.min_decide_return_keyframes},
-                  {"relocalise_after_rounds", &chain.relocalise_after_rounds},
+                  {"global.freeze_history_keyframes", &plan.tracker.freeze_history_keyframes},
+                  {"global.freeze_ranking", &plan.tracker.freeze_ranking},
+                  {"global.return_fit_keyframes", &plan.tracker.return_fit_keyframes},
+                  {"global.min_followed_keyframes", &plan.tracker.min_followed_keyframes},
+                  {"global.min_decide_return_keyframes", &plan.tracker.min_decide_return_keyframes},
+                  {"relocalise_after_rounds", &plan.relocalise_after_rounds},
                   {"plan_adaptation.min_points", &o.plan_adaptation.min_points},
                   {"plan_adaptation.min_rounds", &o.plan_adaptation.min_rounds},
                   {"plan_adaptation.openings.min_through_points", &o.plan_adaptation.openings.min_through_points},
                   {"plan_adaptation.openings.min_rounds", &o.plan_adaptation.openings.min_rounds},
                   {"plan_adaptation.ends.min_points", &o.plan_adaptation.ends.min_points},
                   {"plan_adaptation.ends.min_ends", &o.plan_adaptation.ends.min_ends},
-                  {"lost.lost_after_rounds", &chain.lost.lost_after_rounds},
-                  {"lost.max_candidates", &chain.lost.max_candidates},
-                  {"lost.confirm_keyframes", &chain.lost.confirm_keyframes}};
-  targets.flags = {{"global.answer_on_plan", &chain.tracker.answer_on_plan},
+                  {"lost.lost_after_rounds", &plan.lost.lost_after_rounds},
+                  {"lost.max_candidates", &plan.lost.max_candidates},
+                  {"lost.confirm_keyframes", &plan.lost.confirm_keyframes}};
+  targets.flags = {{"global.answer_on_plan", &plan.tracker.answer_on_plan},
                    {"reacquire_pinned", &o.reacquire_pinned},
                    {"require_interior", &o.require_interior},
                    {"along_search_failed", &o.along_search_failed},
@@ -98,7 +99,7 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
                    {"plan_adaptation.enabled", &o.plan_adaptation.enabled},
                    {"plan_adaptation.openings.enabled", &o.plan_adaptation.openings.enabled},
                    {"plan_adaptation.ends.enabled", &o.plan_adaptation.ends.enabled},
-                   {"lost.enabled", &chain.lost.enabled}};
+                   {"lost.enabled", &plan.lost.enabled}};
   for (const std::string& text : settings) {
     if (text.starts_with(kSmooth)) continue;  // SmootherOptions, with --smooth
     if (text.starts_with(kOdometry)) {
@@ -107,7 +108,7 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
     }
     const Setting setting = ParseSetting(text);
     if (setting.name == "global.compass_tolerance_deg") {
-      chain.compass_tolerance_rad = setting.value * kDeg;
+      plan.compass_tolerance_rad = setting.value * kDeg;
     } else if (setting.name == "window.size_xy_m") {
       o.window.size_x_m = o.window.size_y_m = setting.value;
     } else if (setting.name == "max_window.size_xy_m") {
@@ -116,7 +117,7 @@ void ApplySettings(const std::vector<std::string>& settings, localisation::Local
       throw std::runtime_error("--set: unknown option '" + setting.name + "' (see docs/localisation.md)");
     }
   }
-  ApplyOdometrySettings(odometry_settings, chain.odometry);
+  ApplyOdometrySettings(odometry_settings, options.odometry);
 }
 
 // Applies --set smooth.NAME=VALUE to the offline smoother (names as in TrajectorySmootherOptions,

@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "pena/dead_reckoning/human_dead_reckoning.hpp"
+#include "plan_stage.hpp"
 
 namespace pena::pipeline {
 namespace {
@@ -15,6 +16,10 @@ constexpr double kStampTolerance_s = 1e-3;
 
 bool Finite(const geometry::Pose2& pose) {
   return std::isfinite(pose.x_m) && std::isfinite(pose.y_m) && std::isfinite(pose.theta_rad);
+}
+
+bool Same(const geometry::Pose2& a, const geometry::Pose2& b) {
+  return a.x_m == b.x_m && a.y_m == b.y_m && a.theta_rad == b.theta_rad;
 }
 
 // The covariance of a pose moved by the rigid transform a_from_b (rotate the x-y block).
@@ -57,13 +62,37 @@ void ValidateEntityPipelineOptions(const EntityPipelineOptions& options) {
                                 std::to_string(options.pose_history));
   }
   line_map::ValidateLineExtractionOptions(options.extraction);
+  ValidatePlanLocalisationOptions(options.plan_localisation);
+}
+
+void ValidatePlanLocalisationOptions(const PlanLocalisationOptions& options) {
+  if (!(options.compass_tolerance_rad >= 0.0) || !std::isfinite(options.compass_tolerance_rad)) {
+    throw std::invalid_argument("pipeline.plan_localisation.compass_tolerance_rad must be >= 0 rad, got " +
+                                std::to_string(options.compass_tolerance_rad));
+  }
+  if (!(options.compass_wait_s >= 0.0) || !std::isfinite(options.compass_wait_s)) {
+    throw std::invalid_argument("pipeline.plan_localisation.compass_wait_s must be >= 0 s, got " +
+                                std::to_string(options.compass_wait_s));
+  }
+  if (options.relocalise_after_rounds < 0) {
+    throw std::invalid_argument("pipeline.plan_localisation.relocalise_after_rounds must be >= 0 rounds, got " +
+                                std::to_string(options.relocalise_after_rounds));
+  }
+  if (!(options.relocalise_compass_tolerance_rad > 0.0) ||
+      !std::isfinite(options.relocalise_compass_tolerance_rad)) {
+    throw std::invalid_argument(
+        "pipeline.plan_localisation.relocalise_compass_tolerance_rad must be > 0 rad, got " +
+        std::to_string(options.relocalise_compass_tolerance_rad));
+  }
 }
 
 EntityPipeline::EntityPipeline(const EntityPipelineOptions& options, sensors::EntityKind kind,
                                std::string entity_id, const geometry::Pose2& world_from_start,
                                double start_stamp_s)
     : options_(Validated(options)),
+      kind_(kind),
       entity_id_(std::move(entity_id)),
+      start_stamp_s_(start_stamp_s),
       odometry_(options.odometry, kind, world_from_start, start_stamp_s),
       grid_(options.local_grid, Eigen::Vector2d(world_from_start.x_m, world_from_start.y_m)),
       local_map_(options.line_map),
@@ -79,7 +108,12 @@ EntityPipeline::EntityPipeline(const EntityPipelineOptions& options, sensors::En
   }
 }
 
+EntityPipeline::~EntityPipeline() = default;
+EntityPipeline::EntityPipeline(EntityPipeline&&) noexcept = default;
+EntityPipeline& EntityPipeline::operator=(EntityPipeline&&) noexcept = default;
+
 void EntityPipeline::Push(sensors::SensorRecord record) {
+  pushed_ = true;
   if (spread_) {
     spread_->Push(std::move(record));
   } else {
@@ -119,18 +153,23 @@ std::optional<dead_reckoning::StrideInterpolationCounts> EntityPipeline::stride_
 }
 
 std::optional<ScanStep> EntityPipeline::Step(const sensors::SensorRecord& record) {
+  // An unknown start with a compass holds the scans until the first compass sample.
+  if (plan_ && !plan_->Admit(record, odometry_)) return std::nullopt;
   // Section 2: dead reckoning predicts, the scan matcher corrects against the reference.
   std::optional<odometry::OdometryEstimate> estimate = odometry_.Add(record);
   if (!estimate) return std::nullopt;
-  odom_history_.emplace_back(estimate->stamp_s, estimate->world_from_body);
-  while (odom_history_.size() > static_cast<std::size_t>(options_.pose_history)) {
-    odom_history_.pop_front();
-  }
   ScanStep step;
   const auto& scan = std::get<sensors::LaserScan>(record);
   // Section 4.2: against the plan first, so this scan is already placed where the plan says.
   std::optional<line_map::MapDelta> reset_delta;
-  if (localiser_) step.plan_round = LocaliseOnPlan(scan, *estimate, reset_delta);
+  if (plan_) {
+    step.plan = LocaliseOnPlan(record, *estimate, reset_delta);
+    step.plan_round = step.plan->correction;
+  }
+  odom_history_.emplace_back(estimate->stamp_s, estimate->world_from_body);
+  while (odom_history_.size() > static_cast<std::size_t>(options_.pose_history)) {
+    odom_history_.pop_front();
+  }
   step.world_from_body = geometry::Compose(map_from_odom_, estimate->world_from_body);
   step.covariance = RotateCovariance(estimate->covariance, map_from_odom_);
   step.odometry = std::move(*estimate);
@@ -143,28 +182,46 @@ std::optional<ScanStep> EntityPipeline::Step(const sensors::SensorRecord& record
   return step;
 }
 
+const std::vector<geometry::Segment2>& EntityPipeline::plan() const {
+  static const std::vector<geometry::Segment2> kNone;
+  return plan_ ? plan_->plan() : kNone;
+}
+
 const std::vector<localisation::SegmentShift>& EntityPipeline::plan_shifts() const {
   static const std::vector<localisation::SegmentShift> kNone;
-  return localiser_ ? localiser_->plan_shifts() : kNone;
+  return plan_ ? plan_->plan_shifts() : kNone;
+}
+
+const std::vector<localisation::PlanOpening>& EntityPipeline::plan_openings() const {
+  static const std::vector<localisation::PlanOpening> kNone;
+  return plan_ ? plan_->plan_openings() : kNone;
 }
 
 void EntityPipeline::SetPlan(std::vector<geometry::Segment2> plan_m) {
   if (plan_m.empty()) throw std::invalid_argument("pipeline: the plan has no segments");
-  localiser_ = std::make_unique<localisation::MapLocaliser>(options_.plan_localisation,
-                                                            std::move(plan_m), map_from_odom_);
+  if (options_.plan_localisation.global_start && pushed_) {
+    throw std::logic_error("pipeline: with plan_localisation.global_start the plan is set before the first record");
+  }
+  plan_ = std::make_unique<PlanStage>(options_.plan_localisation, options_.odometry, kind_, std::move(plan_m),
+                                      map_from_odom_, start_stamp_s_, odometry_);
 }
 
-std::optional<localisation::MapCorrection> EntityPipeline::LocaliseOnPlan(
-    const sensors::LaserScan& scan, const odometry::OdometryEstimate& estimate,
-    std::optional<line_map::MapDelta>& delta) {
-  std::optional<localisation::MapCorrection> round = localiser_->Update(scan, estimate);
-  if (!round) return round;
-  ++counts_.plan_rounds;
-  if (round->accepted) {
-    ++counts_.plan_corrections;
-    delta = MoveMapFrame(localiser_->map_from_odom());
+localisation::LocalisedPose EntityPipeline::LocaliseOnPlan(const sensors::SensorRecord& record,
+                                                           odometry::OdometryEstimate& estimate,
+                                                           std::optional<line_map::MapDelta>& delta) {
+  PlanUpdate update = plan_->Update(record, estimate, odometry_);
+  const std::optional<localisation::MapCorrection>& round = update.pose.correction;
+  if (round) ++counts_.plan_rounds;
+  if (round && round->accepted) ++counts_.plan_corrections;
+  if (update.odometry_restarted) {
+    // The odometry starts again on the plan: its old poses no longer answer corrections.
+    odom_history_.clear();
+    delta = PlaceMapFrame(plan_->map_from_odom(),
+                          geometry::Compose(plan_->map_from_odom(), estimate.world_from_body));
+  } else if ((round && round->accepted) || !Same(plan_->map_from_odom(), map_from_odom_)) {
+    delta = MoveMapFrame(plan_->map_from_odom());
   }
-  return round;
+  return std::move(update.pose);
 }
 
 std::optional<line_map::MapDelta> EntityPipeline::UpdateMap(
@@ -210,7 +267,7 @@ CorrectionResult EntityPipeline::ApplyCorrection(const Correction& correction) {
   }
   result.map_delta = MoveMapFrame(map_from_odom);
   // The plan localiser goes on from the corrected frame (its next window is the narrow one).
-  if (localiser_) localiser_->Reset(map_from_odom_);
+  if (plan_) plan_->Reset(map_from_odom_);
   ++counts_.corrections_applied;
   return result;
 }
@@ -239,11 +296,16 @@ CorrectionStatus EntityPipeline::Resolve(const Correction& correction,
 
 std::optional<line_map::MapDelta> EntityPipeline::MoveMapFrame(
     const geometry::Pose2& map_from_odom) {
-  // Where the entity is now, before and after: a large move would blur the grid's walls, so
-  // the old grid's lines are kept and a fresh grid starts at the corrected pose.
+  // Where the entity is now, after the move.
   const geometry::Pose2 odom_from_body =
       geometry::Compose(geometry::Inverse(map_from_odom_), last_world_from_body_);
-  const geometry::Pose2 moved = geometry::Compose(map_from_odom, odom_from_body);
+  return PlaceMapFrame(map_from_odom, geometry::Compose(map_from_odom, odom_from_body));
+}
+
+std::optional<line_map::MapDelta> EntityPipeline::PlaceMapFrame(
+    const geometry::Pose2& map_from_odom, const geometry::Pose2& moved) {
+  // A large move would blur the grid's walls, so the old grid's lines are kept and a fresh grid
+  // starts at the corrected pose.
   const double jump_m =
       std::hypot(moved.x_m - last_world_from_body_.x_m, moved.y_m - last_world_from_body_.y_m);
   const double turn_rad =

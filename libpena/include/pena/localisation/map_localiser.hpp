@@ -60,7 +60,7 @@ enum class MapStatus {
   kInMap,       // the last round matched
   kOutsideMap,  // outside_after_failures rounds in a row failed: on odometry alone
   kReacquired,  // the first good round after being outside
-  kRelocalised, // placed anew on the plan after being lost (LocalisationChainOptions::relocalise_after_rounds)
+  kRelocalised, // placed anew on the plan after being lost (pipeline::PlanLocalisationOptions::relocalise_after_rounds)
 };
 
 // One match round against the plan (at a reference change of the odometry).

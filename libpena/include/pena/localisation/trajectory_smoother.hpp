@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "pena/geometry/pose2.hpp"
-#include "pena/localisation/localisation_chain.hpp"
+#include "pena/localisation/localised_pose.hpp"
 
 namespace pena::localisation {
 
@@ -42,7 +42,7 @@ struct SmoothedTrajectory {
   std::vector<geometry::Pose2> map_from_body;  // one per anchored pose of the input, in order
 };
 
-// Smooths the anchored poses of `poses` (LocalisationChain's output, in time order). A round that
+// Smooths the anchored poses of `poses` (the entity pipeline's plan stage, in time order). A round that
 // relocalised the entity breaks the odometry chain there. Throws std::invalid_argument for a
 // non-positive sigma or iteration count, naming the field.
 SmoothedTrajectory SmoothTrajectory(const std::vector<LocalisedPose>& poses,

@@ -2,9 +2,11 @@
 // The per-entity facade (paper sections 2 and 3): spread a person's strides over the scans they
 // span, predict with dead reckoning or odometry, match the scan against the reference, update the
 // local grid, extract lines and integrate them into the entity's line map, apply corrections from
-// the fusion service and keep the global map it sends. Every program that runs an entity's chain
-// (`pena odometry`, pena-entity, the benchmarks) calls this class. Pure: no DDS, no threads, no
-// files. One instance per entity; not thread-safe.
+// the fusion service and keep the global map it sends; with an a priori plan, localise on it
+// (section 4.2; optionally from an unknown start, with lost and found). Every program that runs
+// an entity's chain (`pena odometry`, `pena localise`, pena map's pose pass, pena-entity, the
+// benchmarks) calls this class. Pure: no DDS, no threads, no files. One instance per entity; not
+// thread-safe.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -20,8 +22,10 @@
 #include "pena/grid/local_grid.hpp"
 #include "pena/line_map/line_extractor.hpp"
 #include "pena/line_map/line_map.hpp"
+#include "pena/localisation/localised_pose.hpp"
 #include "pena/localisation/map_localiser.hpp"
 #include "pena/odometry/laser_odometry.hpp"
+#include "pena/pipeline/plan_localisation_options.hpp"
 #include "pena/sensors/entity.hpp"
 #include "pena/sensors/record.hpp"
 
@@ -49,9 +53,10 @@ struct EntityPipelineOptions {
   double grid_reset_jump_rad = 0.035;  // 2 deg
   // Odometry poses remembered for corrections given at a past stamp. Count, >= 1.
   int pose_history = 4096;
-  // Map localisation against an a priori plan (paper section 4.2), used once SetPlan gave one:
-  // a round at every reference change of the odometry; validated by SetPlan.
-  localisation::MapLocaliserOptions plan_localisation;
+  // Localisation on an a priori plan (paper section 4.2), used once SetPlan gave one: a round at
+  // every reference change of the odometry, and the optional unknown start, lost and found and
+  // relocalisation.
+  PlanLocalisationOptions plan_localisation;
 };
 
 // Throws std::invalid_argument naming the field and its unit (nested options included).
@@ -66,6 +71,9 @@ struct ScanStep {
   std::optional<line_map::MapDelta> map_delta;  // the local line map's change, if it changed
   // The round against the plan at this scan (a plan is set and the reference changed).
   std::optional<localisation::MapCorrection> plan_round;
+  // What the plan stage reported at this scan (a plan is set): pose on the plan, status, the
+  // unknown start's hypotheses, lost and found. Its map_from_body is world_from_body.
+  std::optional<localisation::LocalisedPose> plan;
 };
 
 // A correction from the fusion service (or an operator).
@@ -108,6 +116,8 @@ struct PipelineCounts {
   long plan_corrections = 0;  // of which accepted (they moved map_from_odom)
 };
 
+class PlanStage;
+
 // The chain of one entity. The odometry frame starts at world_from_start; until a correction
 // arrives map_from_odom is the identity, so the odometry frame is the world frame.
 class EntityPipeline {
@@ -116,6 +126,9 @@ class EntityPipeline {
   EntityPipeline(const EntityPipelineOptions& options, sensors::EntityKind kind,
                  std::string entity_id, const geometry::Pose2& world_from_start,
                  double start_stamp_s);
+  ~EntityPipeline();
+  EntityPipeline(EntityPipeline&&) noexcept;
+  EntityPipeline& operator=(EntityPipeline&&) noexcept;
 
   // Feeds one record in time order. Its scans come out of Next: a person's records wait in the
   // stride spreading for the report that ends their stride, so a record may release no scan or
@@ -133,11 +146,16 @@ class EntityPipeline {
   line_map::MapDelta Flush();
 
   // Localises against an a priori plan (map frame, metres) at every reference change from now on.
-  // Throws std::invalid_argument for an empty plan or bad options.plan_localisation.
+  // Throws std::invalid_argument for an empty plan or bad options.plan_localisation, and
+  // std::logic_error with plan_localisation.global_start once a record was pushed.
   void SetPlan(std::vector<geometry::Segment2> plan_m);
-  bool has_plan() const { return localiser_ != nullptr; }
+  bool has_plan() const { return plan_ != nullptr; }
+  // The plan as matched now (with plan adaptation's moves and cuts); empty without a plan.
+  const std::vector<geometry::Segment2>& plan() const;
   // The plan walls the localiser moved where it saw them (plan adaptation); empty without a plan.
   const std::vector<localisation::SegmentShift>& plan_shifts() const;
+  // The openings plan adaptation cut into the plan; empty without a plan.
+  const std::vector<localisation::PlanOpening>& plan_openings() const;
 
   // Applies a correction (see CorrectionStatus).
   CorrectionResult ApplyCorrection(const Correction& correction);
@@ -180,14 +198,22 @@ class EntityPipeline {
   std::optional<line_map::MapDelta> MoveMapFrame(const geometry::Pose2& map_from_odom);
   // The odometry pose at `stamp_s` (within 1 ms) from the history.
   std::optional<geometry::Pose2> OdomPoseAt(double stamp_s) const;
-  // A round against the plan at a reference change; an accepted one moves the map frame (the
-  // old grid's lines, if it was reset, go to `delta`).
-  std::optional<localisation::MapCorrection> LocaliseOnPlan(
-      const sensors::LaserScan& scan, const odometry::OdometryEstimate& estimate,
-      std::optional<line_map::MapDelta>& delta);
+  // The plan stage at a scan; a correction or a restart of the odometry on the plan moves the map
+  // frame (the old grid's lines, if it was reset, go to `delta`). `estimate` becomes the
+  // restarted odometry's after a restart.
+  localisation::LocalisedPose LocaliseOnPlan(const sensors::SensorRecord& record,
+                                             odometry::OdometryEstimate& estimate,
+                                             std::optional<line_map::MapDelta>& delta);
+  // The map frame becomes map_from_odom with the entity at world_from_body; if that moved it
+  // more than a grid reset jump, the grid's lines are extracted and a fresh grid starts.
+  std::optional<line_map::MapDelta> PlaceMapFrame(const geometry::Pose2& map_from_odom,
+                                                  const geometry::Pose2& world_from_body);
 
   EntityPipelineOptions options_;
+  sensors::EntityKind kind_;
   std::string entity_id_;
+  double start_stamp_s_ = 0.0;
+  bool pushed_ = false;  // a record was pushed
   // A person's strides spread over their scans (dead_reckoning::StrideInterpolator); unset when off.
   std::optional<dead_reckoning::StrideInterpolator> spread_;
   std::deque<sensors::SensorRecord> ready_;  // pushed records, when nothing is spread
@@ -200,7 +226,7 @@ class EntityPipeline {
   geometry::Pose2 last_world_from_body_;
   bool grid_has_scans_ = false;
   std::deque<std::pair<double, geometry::Pose2>> odom_history_;  // (stamp_s, odom_from_body)
-  std::unique_ptr<localisation::MapLocaliser> localiser_;  // set by SetPlan
+  std::unique_ptr<PlanStage> plan_;  // set by SetPlan
   PipelineCounts counts_;
 };
 
