@@ -1,8 +1,8 @@
 // pena map: mapping with known (or estimated) poses. Inserts every scan of a log into one global
 // occupancy grid, extracts the line map (paper section 3), merges it in a LineMap, and writes
 // DIR/lines.csv, lines.svg, lines.dxf, grid.pgm + grid.yaml (ROS map_server) and map.png. With
-// --online the line map is built as an entity does: from a local grid that moves with it,
-// extracted at each recentre and merged. Without poses of its own the log is first run through
+// --online the line map is built by the entity pipeline's map stages, as an entity builds it: from
+// a local grid that moves with it, extracted at each recentre and merged. Without poses of its own the log is first run through
 // the odometry and the keyframe SLAM (cmd_map_slam.cpp). Options and outputs: docs/line-map.md.
 #include <algorithm>
 #include <cmath>
@@ -50,6 +50,24 @@ std::optional<geometry::Pose2> PoseAt(const geometry::Trajectory& trajectory, do
 line_map::LineExtractionOptions Extraction(const MapArgs& args) {
   line_map::LineExtractionOptions options;
   options.min_length_m = args.min_length_m;
+  return options;
+}
+
+line_map::LineMapOptions LineMapOptionsOf(const MapArgs& args) {
+  line_map::LineMapOptions options;
+  options.refit_band_m = args.refit_band_m;
+  options.absorb_distance_m = args.absorb_distance_m;
+  return options;
+}
+
+// --online: the pipeline's map stages with the map's grid cells, lines extracted at each recentre
+// of the window only (the paper's online mode).
+pipeline::EntityPipelineOptions OnlineOptionsOf(const MapArgs& args, const grid::GridOptions& grid) {
+  pipeline::EntityPipelineOptions options;
+  options.local_grid.grid = grid;
+  options.extraction = Extraction(args);
+  options.line_map = LineMapOptionsOf(args);
+  options.map_update_distance_m = 0.0;
   return options;
 }
 
@@ -149,20 +167,14 @@ class PoseFeeder {
     if (args_.online) FeedLocal(*scan, pose);
   }
 
-  // The paper's online mode: the local grid is segmented into lines when the entity nears its
-  // edge, and the lines merge into the map (so revisits do not grow it).
+  // The paper's online mode, as the entity pipeline runs it from the first placed scan on.
   void FeedLocal(const sensors::LaserScan& scan, const geometry::Pose2& pose) {
-    if (!run_.local) {
-      grid::LocalGridOptions options;
-      options.grid = run_.grid.options();
-      run_.local.emplace(options, Eigen::Vector2d(pose.x_m, pose.y_m));
+    if (!run_.online) {
+      run_.online.emplace(OnlineOptionsOf(args_, run_.grid.options()),
+                          source_.description().kind.value_or(sensors::EntityKind::kRobot), run_.source,
+                          pose, scan.stamp_s);
     }
-    if (run_.local->NeedsRecentre(pose)) {
-      run_.map.Integrate(line_map::ExtractLines(run_.local->Recentre(pose), Extraction(args_)),
-                         run_.source);
-      ++run_.extractions;
-    }
-    run_.local->Insert(scan, pose);
+    run_.online->Place(scan, pose);
   }
 
   const MapArgs& args_;
@@ -178,9 +190,7 @@ void RunMap(const MapArgs& args) {
   grid::GridOptions grid_options;
   grid_options.resolution_m = args.resolution_m;
   MapRun run(grid_options);
-  line_map::LineMapOptions map_options;
-  map_options.refit_band_m = args.refit_band_m;
-  map_options.absorb_distance_m = args.absorb_distance_m;
+  const line_map::LineMapOptions map_options = LineMapOptionsOf(args);
   run.map = line_map::LineMap(map_options);
   if (args.bent_scans != "off") run.leveller.emplace();  // options checked before the first pass
   // A bad --set slam.* is an error whether or not the SLAM runs (a trajectory, logged poses).
@@ -200,7 +210,7 @@ void RunMap(const MapArgs& args) {
     run.reference.emplace(std::move(run.grid));
     run.grid = grid::OccupancyGrid(grid_options);
     run.scans = run.used = run.skipped_no_pose = run.refused = 0;
-    run.local.reset();
+    run.online.reset();
     run.map = line_map::LineMap(map_options);
     run.extractions = 0;
     const std::unique_ptr<io::LogSource> again = io::OpenLog(args.log, args.read);
@@ -211,9 +221,13 @@ void RunMap(const MapArgs& args) {
   const grid::GridImage image = run.grid.ToImage();
   // Offline: one extraction from the whole grid; online: the last window's. Either way through
   // the LineMap, which joins the pieces of one wall (docs/line-map.md).
-  run.map.Integrate(
-      line_map::ExtractLines(run.local ? run.local->ToImage() : image, Extraction(args)),
-      run.source);
+  if (run.online) {
+    run.extractions = run.online->counts().extractions;
+    run.online->Flush();
+    run.map = run.online->local_map();
+  } else {
+    run.map.Integrate(line_map::ExtractLines(image, Extraction(args)), run.source);
+  }
   const std::vector<line_map::LineSegment> lines = run.map.segments();
   const double extract_s = SecondsSince(extract_start);
   const auto write_start = Clock::now();

@@ -51,7 +51,9 @@ slam::SlamOptions SlamOptionsOf(const MapArgs& args);
 struct MapRun {
   explicit MapRun(const grid::GridOptions& options) : grid(options) {}
   grid::OccupancyGrid grid;
-  std::optional<grid::LocalGrid> local;  // --online: the window that moves with the entity
+  // --online: the entity pipeline's map stages (the local grid that moves with the entity, its
+  // lines merged into the entity's line map), fed each scan at its pose.
+  std::optional<pipeline::EntityPipeline> online;
   line_map::LineMap map;                 // the merged line map
   std::string source = "map";            // provenance of its segments: the log's entity id
   long extractions = 0;

@@ -126,7 +126,7 @@ void PrintSummary(const MapRun& run, const grid::GridImage& image,
             << Fixed(image.occupancy.cols * image.resolution_m, 1) << " x "
             << Fixed(image.occupancy.rows * image.resolution_m, 1) << " m)\n";
   std::cout << lines.size() << " segments, total length " << Fixed(TotalLength(lines), 1)
-            << " m" << (run.local ? " (online: " + std::to_string(run.extractions) +
+            << " m" << (run.online ? " (online: " + std::to_string(run.extractions) +
                                         " local-grid extractions merged)"
                                   : std::string())
             << "\n";

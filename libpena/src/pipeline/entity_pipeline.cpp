@@ -252,6 +252,12 @@ line_map::MapDelta EntityPipeline::ExtractAndIntegrate(const grid::GridImage& im
   return local_map_.Integrate(line_map::ExtractLines(image, options_.extraction), entity_id_);
 }
 
+std::optional<line_map::MapDelta> EntityPipeline::Place(const sensors::LaserScan& scan,
+                                                        const geometry::Pose2& world_from_body) {
+  last_world_from_body_ = world_from_body;
+  return UpdateMap(scan, world_from_body);
+}
+
 line_map::MapDelta EntityPipeline::Flush() {
   if (!grid_has_scans_) return local_map_.Integrate({}, entity_id_);
   return ExtractAndIntegrate(grid_.ToImage());

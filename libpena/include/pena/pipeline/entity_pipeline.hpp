@@ -144,6 +144,11 @@ class EntityPipeline {
   // Extracts the lines of the current window into the line map (end of input); the delta may
   // be empty.
   line_map::MapDelta Flush();
+  // A scan whose pose comes from outside the pipeline (a trajectory, the log's own poses, an
+  // offline SLAM): the map stages alone (local grid, lines), as Next runs them after the
+  // odometry; the odometry and the plan stage do not see it. Not to be mixed with Push.
+  std::optional<line_map::MapDelta> Place(const sensors::LaserScan& scan,
+                                          const geometry::Pose2& world_from_body);
 
   // Localises against an a priori plan (map frame, metres) at every reference change from now on.
   // Throws std::invalid_argument for an empty plan or bad options.plan_localisation, and
