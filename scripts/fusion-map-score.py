@@ -56,21 +56,6 @@ def length(row):
     return math.hypot(row[3] - row[1], row[4] - row[2])
 
 
-def fit(pairs):
-    """Rigid transform (theta, tx, ty) mapping b onto a, least squares over [(a, b)] positions."""
-    n = len(pairs)
-    ca = [sum(a[k] for a, _ in pairs) / n for k in (0, 1)]
-    cb = [sum(b[k] for _, b in pairs) / n for k in (0, 1)]
-    c = s = 0.0
-    for a, b in pairs:
-        ax, ay, bx, by = a[0] - ca[0], a[1] - ca[1], b[0] - cb[0], b[1] - cb[1]
-        c += bx * ax + by * ay
-        s += bx * ay - by * ax
-    th = math.atan2(s, c)
-    return th, ca[0] - (math.cos(th) * cb[0] - math.sin(th) * cb[1]), \
-        ca[1] - (math.sin(th) * cb[0] + math.cos(th) * cb[1])
-
-
 def team_poses(work, pieces):
     """{stamp (log clock): (x, y)} of every published pose in the map frame."""
     trajectories = {p[0]: split.read_tum(work / p[0] / 'trajectory.tum', p[3]) for p in pieces}
@@ -108,7 +93,7 @@ def reference_in_map(log, name, work, build, pieces):
             pairs.append((poses[stamps[i]], pose[:2]))  # (map frame, corrected frame)
     if len(pairs) < 3:
         sys.exit(f"fusion-map-score: only {len(pairs)} scans paired with {corrected}")
-    th, tx, ty = fit(pairs)  # map_from_corrected
+    th, tx, ty = frame_fit.fit_rigid(pairs)  # map_from_corrected
     c, s = math.cos(th), math.sin(th)
     moved = lambda x, y: (c * x - s * y + tx, s * x + c * y + ty)
     residuals = [math.hypot(*(m - v for m, v in zip(a, moved(*b)))) for a, b in pairs]

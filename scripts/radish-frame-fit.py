@@ -48,6 +48,22 @@ def read_tum(path):
     return out
 
 
+def fit_rigid(pairs):
+    """The rigid transform (theta, tx, ty) taking the b positions onto the a positions, least
+    squares over [(a, b)] (positions first in each)."""
+    n = len(pairs)
+    ca = [sum(a[k] for a, _ in pairs) / n for k in (0, 1)]
+    cb = [sum(b[k] for _, b in pairs) / n for k in (0, 1)]
+    c = s = 0.0
+    for a, b in pairs:
+        ax, ay, bx, by = a[0] - ca[0], a[1] - ca[1], b[0] - cb[0], b[1] - cb[1]
+        c += bx * ax + by * ay
+        s += bx * ay - by * ax
+    th = math.atan2(s, c)
+    cos, sin = math.cos(th), math.sin(th)
+    return th, ca[0] - (cos * cb[0] - sin * cb[1]), ca[1] - (sin * cb[0] + cos * cb[1])
+
+
 def main():
     args = sys.argv[1:]
     tum_out = None
@@ -83,17 +99,8 @@ def main():
     if len(pairs) < 3:
         sys.exit('only %d scan pairs (%d corrected scans unpaired)' % (len(pairs), unpaired))
     n = len(pairs)
-    ca = [sum(a[k] for a, _ in pairs) / n for k in (0, 1)]
-    cb = [sum(b[k] for _, b in pairs) / n for k in (0, 1)]
-    c = s = 0.0
-    for a, b in pairs:
-        ax, ay, bx, by = a[0] - ca[0], a[1] - ca[1], b[0] - cb[0], b[1] - cb[1]
-        c += bx * ax + by * ay
-        s += bx * ay - by * ax
-    th = math.atan2(s, c)
+    th, tx, ty = fit_rigid(pairs)
     cos, sin = math.cos(th), math.sin(th)
-    tx = ca[0] - (cos * cb[0] - sin * cb[1])
-    ty = ca[1] - (sin * cb[0] + cos * cb[1])
     err, herr = [], []
     for a, b in pairs:
         err.append(math.hypot(cos * b[0] - sin * b[1] + tx - a[0], sin * b[0] + cos * b[1] + ty - a[1]))
