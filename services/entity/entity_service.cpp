@@ -162,7 +162,10 @@ bool EntityService::FusionMatched() const {
   // So the wait covers every endpoint the fusion's first answer travels through.
   if (delta_writer_.matched() == 0) return false;
   if (options_.await_corrections_s <= 0.0) return true;
-  return scan_writer_.matched() > 0 && correction_reader_.matched() > 0;
+  // In lockstep the run must not depend on discovery either: a pose written before the fusion's
+  // pose reader matched is lost (volatile), and the fusion's picture would then differ by it.
+  return scan_writer_.matched() > 0 && correction_reader_.matched() > 0 &&
+         pose_writer_.matched() > 0;
 }
 
 void EntityService::WaitForReaders() {
@@ -172,9 +175,9 @@ void EntityService::WaitForReaders() {
   }
   if (options_.wait_for_readers_s > 0.0 && !FusionMatched()) {
     spdlog::warn("{}: the fusion's readers did not all match within {} s (line map {}, reference "
-                 "scans {}, corrections {}); starting anyway",
+                 "scans {}, corrections {}, poses {}); starting anyway",
                  entity_id_, options_.wait_for_readers_s, delta_writer_.matched(),
-                 scan_writer_.matched(), correction_reader_.matched());
+                 scan_writer_.matched(), correction_reader_.matched(), pose_writer_.matched());
   }
 }
 
