@@ -1,9 +1,12 @@
 // pena map: mapping with known (or estimated) poses. Inserts every scan of a log into one global
 // occupancy grid, extracts the line map (paper section 3), merges it in a LineMap, and writes
-// DIR/lines.csv, lines.svg, lines.dxf, grid.pgm + grid.yaml (ROS map_server) and map.png. With
-// --online the line map is built by the entity pipeline's map stages, as an entity builds it: from
-// a local grid that moves with it, extracted at each recentre and merged. Without poses of its own the log is first run through
-// the odometry and the keyframe SLAM (cmd_map_slam.cpp). Options and outputs: docs/line-map.md.
+// DIR/lines.csv, lines.svg, lines.dxf, grid.pgm + grid.yaml (ROS map_server) and map.png. Each scan
+// passes the entity pipeline's stages after the odometry (EntityPipeline::Place) first: with
+// --bent-scans a second pass levels or leaves out the scans the first pass's grid shows bent;
+// with --online the line map is built by the pipeline's map stages, as an entity builds it: from
+// a local grid that moves with it, extracted at each recentre and merged. Without poses of its
+// own the log is first run through the odometry and the keyframe SLAM (cmd_map_slam.cpp). Options
+// and outputs: docs/line-map.md.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -60,10 +63,13 @@ line_map::LineMapOptions LineMapOptionsOf(const MapArgs& args) {
   return options;
 }
 
-// --online: the pipeline's map stages with the map's grid cells, lines extracted at each recentre
-// of the window only (the paper's online mode).
-pipeline::EntityPipelineOptions OnlineOptionsOf(const MapArgs& args, const grid::GridOptions& grid) {
+// The pipeline's stages after the odometry: the bent-scan stage as --bent-scans says; with
+// --online the map stages with the map's grid cells, lines extracted at each recentre of the
+// window only (the paper's online mode), else no line map (the whole-walk grid gives it).
+pipeline::EntityPipelineOptions StagesOptionsOf(const MapArgs& args, const grid::GridOptions& grid) {
   pipeline::EntityPipelineOptions options;
+  options.bent_scans.mode = pipeline::BentScanModeOf(args.bent_scans).value();
+  options.build_line_map = args.online;
   options.local_grid.grid = grid;
   options.extraction = Extraction(args);
   options.line_map = LineMapOptionsOf(args);
@@ -147,34 +153,30 @@ class PoseFeeder {
     Place(step.scan, step.odometry.world_from_body);
   }
 
-  // The laser sits at the body origin, so world_from_laser is the body pose.
-  void Place(const sensors::LaserScan& original, const geometry::Pose2& pose) {
-    const sensors::LaserScan* scan = &original;
-    std::optional<sensors::LaserScan> level;
-    if (run_.reference && run_.leveller) {
-      if (const auto floor = run_.leveller->FloorLineOf(*run_.reference, *scan, pose)) {
-        ++run_.bent_scans;
-        if (args_.bent_scans == "drop") return;
-        level = run_.leveller->Level(*scan, *floor);
-        scan = &*level;
-      }
-    }
-    if (run_.grid.Insert(*scan, pose)) {
+  // The pipeline's stages take the scan first (levelled or left out when bent, the online line
+  // map); the whole-walk grid then takes it as they placed it. The laser sits at the body origin,
+  // so world_from_laser is the body pose.
+  void Place(const sensors::LaserScan& scan, const geometry::Pose2& pose) {
+    if (!run_.stages) StartStages(scan, pose);
+    const pipeline::Placement placed = run_.stages->Place(scan, pose);
+    if (!placed.scan) return;  // bent, --bent-scans drop
+    if (run_.grid.Insert(*placed.scan, pose)) {
       ++run_.used;
     } else {
       ++run_.refused;
     }
-    if (args_.online) FeedLocal(*scan, pose);
   }
 
-  // The paper's online mode, as the entity pipeline runs it from the first placed scan on.
-  void FeedLocal(const sensors::LaserScan& scan, const geometry::Pose2& pose) {
-    if (!run_.online) {
-      run_.online.emplace(OnlineOptionsOf(args_, run_.grid.options()),
-                          source_.description().kind.value_or(sensors::EntityKind::kRobot), run_.source,
-                          pose, scan.stamp_s);
+  // From the first scan placed on, as the entity pipeline runs them; the second pass judges
+  // bent scans against the first pass's grid.
+  void StartStages(const sensors::LaserScan& scan, const geometry::Pose2& pose) {
+    run_.stages.emplace(StagesOptionsOf(args_, run_.grid.options()),
+                        source_.description().kind.value_or(sensors::EntityKind::kRobot),
+                        run_.source, pose, scan.stamp_s);
+    if (run_.reference) {
+      run_.stages->SetBentScanReference(std::move(*run_.reference));
+      run_.reference.reset();
     }
-    run_.online->Place(scan, pose);
   }
 
   const MapArgs& args_;
@@ -192,7 +194,7 @@ void RunMap(const MapArgs& args) {
   MapRun run(grid_options);
   const line_map::LineMapOptions map_options = LineMapOptionsOf(args);
   run.map = line_map::LineMap(map_options);
-  if (args.bent_scans != "off") run.leveller.emplace();  // options checked before the first pass
+  run.online = args.online;
   // A bad --set slam.* is an error whether or not the SLAM runs (a trajectory, logged poses).
   (void)SlamOptionsOf(args);
   if (!args.trajectory.empty()) {
@@ -208,13 +210,15 @@ void RunMap(const MapArgs& args) {
     // Second pass: the same scans, those that the first pass's grid shows bent levelled or left
     // out (docs/grid.md, "Bent scans").
     run.reference.emplace(std::move(run.grid));
+    run.second_pass = true;
     run.grid = grid::OccupancyGrid(grid_options);
     run.scans = run.used = run.skipped_no_pose = run.refused = 0;
-    run.online.reset();
+    run.stages.reset();
     run.map = line_map::LineMap(map_options);
     run.extractions = 0;
     const std::unique_ptr<io::LogSource> again = io::OpenLog(args.log, args.read);
     PoseFeeder(args, trajectory, *again, run).Run();
+    if (run.stages) run.bent_scans = run.stages->counts().bent_scans;
   }
   if (run.used == 0) throw std::runtime_error(args.log + ": no scan could be placed in the grid");
   const auto extract_start = Clock::now();
@@ -222,9 +226,9 @@ void RunMap(const MapArgs& args) {
   // Offline: one extraction from the whole grid; online: the last window's. Either way through
   // the LineMap, which joins the pieces of one wall (docs/line-map.md).
   if (run.online) {
-    run.extractions = run.online->counts().extractions;
-    run.online->Flush();
-    run.map = run.online->local_map();
+    run.extractions = run.stages->counts().extractions;
+    run.stages->Flush();
+    run.map = run.stages->local_map();
   } else {
     run.map.Integrate(line_map::ExtractLines(image, Extraction(args)), run.source);
   }

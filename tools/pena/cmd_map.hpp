@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "pena/geometry/trajectory.hpp"
-#include "pena/grid/bent_scan.hpp"
 #include "pena/grid/grid_image.hpp"
 #include "pena/grid/local_grid.hpp"
 #include "pena/grid/occupancy_grid.hpp"
@@ -51,9 +50,11 @@ slam::SlamOptions SlamOptionsOf(const MapArgs& args);
 struct MapRun {
   explicit MapRun(const grid::GridOptions& options) : grid(options) {}
   grid::OccupancyGrid grid;
-  // --online: the entity pipeline's map stages (the local grid that moves with the entity, its
-  // lines merged into the entity's line map), fed each scan at its pose.
-  std::optional<pipeline::EntityPipeline> online;
+  // The entity pipeline's stages after the odometry, fed each scan at its pose before `grid`
+  // takes it: the bent-scan stage (--bent-scans) and, with --online, the local grid that moves
+  // with the entity, its lines merged into the entity's line map.
+  std::optional<pipeline::EntityPipeline> stages;
+  bool online = false;                   // --online: the line map comes from `stages`
   line_map::LineMap map;                 // the merged line map
   std::string source = "map";            // provenance of its segments: the log's entity id
   long extractions = 0;
@@ -64,9 +65,9 @@ struct MapRun {
   long used = 0;
   long skipped_no_pose = 0;
   long refused = 0;  // Insert said no: pose not finite or grid too large
-  // --bent-scans: the first pass's grid, against which the second judges each scan.
+  // --bent-scans, second pass: the first pass's grid, handed to `stages` when it starts.
   std::optional<grid::OccupancyGrid> reference;
-  std::optional<grid::BentScanLeveller> leveller;  // --bent-scans: judges scans against reference
+  bool second_pass = false;
   long bent_scans = 0;  // --bent-scans: scans the second pass found bent
   double wall_s = 0.0;
 };

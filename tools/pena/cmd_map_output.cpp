@@ -118,7 +118,7 @@ void PrintSummary(const MapRun& run, const grid::GridImage& image,
   std::cout << "poses: " << run.pose_source << "; " << run.scans << " scans, " << run.used
             << " used, " << run.skipped_no_pose << " skipped (no pose)";
   if (run.refused > 0) std::cout << ", " << run.refused << " refused by the grid";
-  if (run.reference) std::cout << ", second pass: " << run.bent_scans << " bent";
+  if (run.second_pass) std::cout << ", second pass: " << run.bent_scans << " bent";
   std::cout << "\n";
   PrintSlam(run);
   std::cout << "grid " << image.occupancy.cols << " x " << image.occupancy.rows << " cells at "

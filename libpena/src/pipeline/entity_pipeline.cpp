@@ -63,6 +63,27 @@ void ValidateEntityPipelineOptions(const EntityPipelineOptions& options) {
   }
   line_map::ValidateLineExtractionOptions(options.extraction);
   ValidatePlanLocalisationOptions(options.plan_localisation);
+  if (!BentScanModeOf(ToString(options.bent_scans.mode))) {
+    throw std::invalid_argument("pipeline.bent_scans.mode must be off, level or drop, got " +
+                                std::to_string(static_cast<int>(options.bent_scans.mode)));
+  }
+  grid::ValidateBentScanOptions(options.bent_scans.judge);
+}
+
+const char* ToString(BentScanMode mode) {
+  switch (mode) {
+    case BentScanMode::kOff: return "off";
+    case BentScanMode::kLevel: return "level";
+    case BentScanMode::kDrop: return "drop";
+  }
+  return "unknown";
+}
+
+std::optional<BentScanMode> BentScanModeOf(std::string_view name) {
+  for (const BentScanMode mode : {BentScanMode::kOff, BentScanMode::kLevel, BentScanMode::kDrop}) {
+    if (name == ToString(mode)) return mode;
+  }
+  return std::nullopt;
 }
 
 void ValidatePlanLocalisationOptions(const PlanLocalisationOptions& options) {
@@ -97,7 +118,8 @@ EntityPipeline::EntityPipeline(const EntityPipelineOptions& options, sensors::En
       grid_(options.local_grid, Eigen::Vector2d(world_from_start.x_m, world_from_start.y_m)),
       local_map_(options.line_map),
       global_map_(options.line_map),
-      last_world_from_body_(world_from_start) {
+      last_world_from_body_(world_from_start),
+      leveller_(options.bent_scans.judge) {
   if (entity_id_.empty()) throw std::invalid_argument("pipeline: entity id must not be empty");
   // The walker's position moves only at stride reports, which come when a stride ends: spread
   // over the scans inside it, the prediction follows the walker instead of lagging by a stride
@@ -175,9 +197,16 @@ std::optional<ScanStep> EntityPipeline::Step(const sensors::SensorRecord& record
   step.odometry = std::move(*estimate);
   step.scan = scan;
   last_world_from_body_ = step.world_from_body;
-  // Section 3: the scan goes into the local grid at the corrected pose; lines come out of it.
-  // A grid just reset by a plan correction is fresh: nothing to extract at this scan.
-  step.map_delta = UpdateMap(scan, step.world_from_body, !reset_delta);
+  // Section 3: the scan goes into the local grid at the corrected pose (levelled or left out if
+  // the first pass showed it bent); lines come out of it. A grid just reset by a plan correction
+  // is fresh: nothing to extract at this scan.
+  const Levelling levelling = JudgeBent(scan, step.world_from_body);
+  step.bent = levelling.bent;
+  if (!levelling.bent) {
+    step.map_delta = UpdateMap(scan, step.world_from_body, !reset_delta);
+  } else if (levelling.levelled) {
+    step.map_delta = UpdateMap(*levelling.levelled, step.world_from_body, !reset_delta);
+  }
   if (reset_delta) step.map_delta = std::move(reset_delta);
   return step;
 }
@@ -252,10 +281,38 @@ line_map::MapDelta EntityPipeline::ExtractAndIntegrate(const grid::GridImage& im
   return local_map_.Integrate(line_map::ExtractLines(image, options_.extraction), entity_id_);
 }
 
-std::optional<line_map::MapDelta> EntityPipeline::Place(const sensors::LaserScan& scan,
-                                                        const geometry::Pose2& world_from_body) {
+Placement EntityPipeline::Place(const sensors::LaserScan& scan,
+                                const geometry::Pose2& world_from_body) {
   last_world_from_body_ = world_from_body;
-  return UpdateMap(scan, world_from_body);
+  Levelling levelling = JudgeBent(scan, world_from_body);
+  Placement placement;
+  placement.bent = levelling.bent;
+  placement.scan = levelling.bent ? std::move(levelling.levelled) : scan;
+  if (placement.scan) placement.map_delta = UpdateMap(*placement.scan, world_from_body);
+  return placement;
+}
+
+void EntityPipeline::SetBentScanReference(grid::OccupancyGrid first_pass) {
+  if (options_.bent_scans.mode == BentScanMode::kOff) {
+    throw std::logic_error("pipeline: bent_scans.mode is off, so a first pass's grid has no use");
+  }
+  bent_reference_ = std::make_unique<grid::OccupancyGrid>(std::move(first_pass));
+}
+
+EntityPipeline::Levelling EntityPipeline::JudgeBent(const sensors::LaserScan& scan,
+                                                    const geometry::Pose2& world_from_body) {
+  Levelling levelling;
+  if (!bent_reference_) return levelling;
+  // The laser sits at the body origin, so the body pose is world_from_laser.
+  const std::optional<grid::FloorLine> floor =
+      leveller_.FloorLineOf(*bent_reference_, scan, world_from_body);
+  if (!floor) return levelling;
+  levelling.bent = true;
+  ++counts_.bent_scans;
+  if (options_.bent_scans.mode == BentScanMode::kLevel) {
+    levelling.levelled = leveller_.Level(scan, *floor);
+  }
+  return levelling;
 }
 
 line_map::MapDelta EntityPipeline::Flush() {

@@ -3,8 +3,9 @@
 // span, predict with dead reckoning or odometry, match the scan against the reference, update the
 // local grid, extract lines and integrate them into the entity's line map, apply corrections from
 // the fusion service and keep the global map it sends; with an a priori plan, localise on it
-// (section 4.2; optionally from an unknown start, with lost and found). Every program that runs
-// an entity's chain (`pena odometry`, `pena localise`, pena map's pose pass, pena-entity, the
+// (section 4.2; optionally from an unknown start, with lost and found); given a first pass's grid
+// of the same walk, level bent scans before they reach the map. Every program that runs an
+// entity's chain (`pena odometry`, `pena localise`, `pena map`'s passes, pena-entity, the
 // benchmarks) calls this class. Pure: no DDS, no threads, no files. One instance per entity; not
 // thread-safe.
 
@@ -14,12 +15,15 @@
 #include <optional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pena/dead_reckoning/stride_interpolator.hpp"
 #include "pena/geometry/pose2.hpp"
 #include "pena/geometry/segment2.hpp"
+#include "pena/grid/bent_scan.hpp"
 #include "pena/grid/local_grid.hpp"
+#include "pena/grid/occupancy_grid.hpp"
 #include "pena/line_map/line_extractor.hpp"
 #include "pena/line_map/line_map.hpp"
 #include "pena/localisation/localised_pose.hpp"
@@ -30,6 +34,20 @@
 #include "pena/sensors/record.hpp"
 
 namespace pena::pipeline {
+
+// What the bent-scan stage does with a scan that the first pass's grid shows bent.
+enum class BentScanMode {
+  kOff,    // nothing: every scan reaches the map as measured (no first-pass grid may be given)
+  kLevel,  // ranges cut to their horizontal part, the floor's returns left out
+  kDrop,   // the whole scan is left out of the map
+};
+
+// The bent-scan stage (docs/grid.md, "Bent scans"): with a first pass's grid of the same walk
+// (SetBentScanReference), scans it shows bent are levelled or left out before the map stages.
+struct BentScanStageOptions {
+  BentScanMode mode = BentScanMode::kOff;
+  grid::BentScanOptions judge;  // which scans are bent, and how they are levelled
+};
 
 // Options of the whole per-entity chain; validated by EntityPipeline's constructor.
 struct EntityPipelineOptions {
@@ -57,10 +75,16 @@ struct EntityPipelineOptions {
   // every reference change of the odometry, and the optional unknown start, lost and found and
   // relocalisation.
   PlanLocalisationOptions plan_localisation;
+  // Bent scans levelled or left out of the map, judged against a first pass's grid; off.
+  BentScanStageOptions bent_scans;
 };
 
 // Throws std::invalid_argument naming the field and its unit (nested options included).
 void ValidateEntityPipelineOptions(const EntityPipelineOptions& options);
+
+// "off", "level", "drop"; BentScanModeOf reads them back (nullopt for any other name).
+const char* ToString(BentScanMode mode);
+std::optional<BentScanMode> BentScanModeOf(std::string_view name);
 
 // What one laser scan produced.
 struct ScanStep {
@@ -74,6 +98,16 @@ struct ScanStep {
   // What the plan stage reported at this scan (a plan is set): pose on the plan, status, the
   // unknown start's hypotheses, lost and found. Its map_from_body is world_from_body.
   std::optional<localisation::LocalisedPose> plan;
+  // The bent-scan stage found the scan bent: the map stages got it levelled, or not at all.
+  bool bent = false;
+};
+
+// What Place did with a scan.
+struct Placement {
+  // The scan as the map stages took it (levelled when bent); nullopt when left out (bent, kDrop).
+  std::optional<sensors::LaserScan> scan;
+  bool bent = false;  // the bent-scan stage found it bent
+  std::optional<line_map::MapDelta> map_delta;  // the local line map's change, if it changed
 };
 
 // A correction from the fusion service (or an operator).
@@ -114,6 +148,7 @@ struct PipelineCounts {
   long global_deltas_refused = 0;
   long plan_rounds = 0;       // map-localisation rounds against the plan
   long plan_corrections = 0;  // of which accepted (they moved map_from_odom)
+  long bent_scans = 0;        // scans the bent-scan stage levelled or left out
 };
 
 class PlanStage;
@@ -145,10 +180,16 @@ class EntityPipeline {
   // be empty.
   line_map::MapDelta Flush();
   // A scan whose pose comes from outside the pipeline (a trajectory, the log's own poses, an
-  // offline SLAM): the map stages alone (local grid, lines), as Next runs them after the
-  // odometry; the odometry and the plan stage do not see it. Not to be mixed with Push.
-  std::optional<line_map::MapDelta> Place(const sensors::LaserScan& scan,
-                                          const geometry::Pose2& world_from_body);
+  // offline SLAM): the stages after the odometry alone (bent scans, local grid, lines), as Next
+  // runs them; the odometry and the plan stage do not see it. Not to be mixed with Push.
+  Placement Place(const sensors::LaserScan& scan, const geometry::Pose2& world_from_body);
+
+  // Starts the bent-scan stage (options.bent_scans.mode not off): from now on a scan that
+  // `first_pass` shows bent at its pose is levelled or left out before the map stages.
+  // first_pass: the grid of a first pass over the same walk at the same poses (world frame).
+  // Throws std::logic_error when bent_scans.mode is off.
+  void SetBentScanReference(grid::OccupancyGrid first_pass);
+  bool has_bent_scan_reference() const { return bent_reference_ != nullptr; }
 
   // Localises against an a priori plan (map frame, metres) at every reference change from now on.
   // Throws std::invalid_argument for an empty plan or bad options.plan_localisation, and
@@ -192,6 +233,14 @@ class EntityPipeline {
   std::optional<ScanStep> Step(const sensors::SensorRecord& record);
   // Extracts the lines of `image` and integrates them; the delta may be empty.
   line_map::MapDelta ExtractAndIntegrate(const grid::GridImage& image);
+  // What the bent-scan stage made of a scan: not bent (it reaches the map as measured), or bent
+  // and levelled (kLevel) or left out (kDrop: no levelled scan).
+  struct Levelling {
+    bool bent = false;
+    std::optional<sensors::LaserScan> levelled;
+  };
+  // The bent-scan stage at a scan placed at world_from_body; without a reference nothing is bent.
+  Levelling JudgeBent(const sensors::LaserScan& scan, const geometry::Pose2& world_from_body);
   // Runs the grid and line steps for a scan placed at world_from_body (extraction only if
   // `may_extract`).
   std::optional<line_map::MapDelta> UpdateMap(const sensors::LaserScan& scan,
@@ -232,6 +281,8 @@ class EntityPipeline {
   bool grid_has_scans_ = false;
   std::deque<std::pair<double, geometry::Pose2>> odom_history_;  // (stamp_s, odom_from_body)
   std::unique_ptr<PlanStage> plan_;  // set by SetPlan
+  grid::BentScanLeveller leveller_;   // options.bent_scans.judge
+  std::unique_ptr<grid::OccupancyGrid> bent_reference_;  // set by SetBentScanReference
   PipelineCounts counts_;
 };
 
