@@ -1,15 +1,20 @@
-// One pipeline: `pena localise` is an adapter over pipeline::EntityPipeline with its plan stage.
-// The same simulated firefighter localised by the binary and by the pipeline in-process (the
-// options `pena localise` documents: no line map, lost and found on) gives the same trajectory.
+// One pipeline: `pena localise` is an adapter over pipeline::EntityPipeline with its plan stage,
+// `pena map --bent-scans` over its bent-scan stage. The same simulated firefighter localised by
+// the binary and by the pipeline in-process (the options `pena localise` documents: no line map,
+// lost and found on) gives the same trajectory; mapped, the same grid.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "pena/geometry/trajectory.hpp"
+#include "pena/grid/occupancy_grid.hpp"
+#include "pena/io/ros_map.hpp"
 #include "pena/io/log_source.hpp"
 #include "pena/io/plan_reader.hpp"
 #include "pena/io/trajectory_io.hpp"
@@ -58,6 +63,58 @@ void ExpectSameTrajectory(const geometry::Trajectory& cli, const geometry::Traje
   }
   EXPECT_LT(worst_m, 1e-3);
   EXPECT_LT(worst_rad, 1e-3);
+}
+
+// One pass of `log` through the pipeline's stages at the true poses (the scan's stamp within 1 ms)
+// into a whole-walk grid, as `pena map --trajectory` places them; the second pass judges bent
+// scans against `first_pass`. Returns the grid; `bent` counts the scans the stage found bent.
+grid::OccupancyGrid MapPassInProcess(const std::filesystem::path& log, const geometry::Trajectory& truth,
+                                     std::optional<grid::OccupancyGrid> first_pass, long& bent) {
+  pipeline::EntityPipelineOptions options;
+  options.build_line_map = false;
+  options.bent_scans.mode = pipeline::BentScanMode::kLevel;
+  const std::unique_ptr<io::LogSource> source = io::OpenLog(log, io::ReadOptions{});
+  std::optional<pipeline::EntityPipeline> stages;
+  grid::OccupancyGrid grid;
+  while (const auto record = source->Next()) {
+    const auto* scan = std::get_if<sensors::LaserScan>(&*record);
+    if (scan == nullptr) continue;
+    const auto pose = std::find_if(truth.begin(), truth.end(), [&](const geometry::StampedPose2& p) {
+      return std::abs(p.stamp_s - scan->stamp_s) <= 1e-3;
+    });
+    if (pose == truth.end()) continue;
+    if (!stages) {
+      stages.emplace(options, sensors::EntityKind::kHuman, "ff1", pose->pose, scan->stamp_s);
+      if (first_pass) stages->SetBentScanReference(std::move(*first_pass));
+    }
+    const pipeline::Placement placed = stages->Place(*scan, pose->pose);
+    if (placed.scan) grid.Insert(*placed.scan, pose->pose);
+  }
+  bent = stages ? stages->counts().bent_scans : 0;
+  return grid;
+}
+
+TEST(CliOnePipeline, PenaMapBentScansIsThePipelinesBentScanStage) {
+  const auto mission = FreshDir("one_pipeline_bent");
+  ASSERT_EQ(RunPena("simulate --scenario office --seed 1 --out " + mission.string()).exit_code, 0);
+  const std::filesystem::path log = mission / "ff1" / "sensors.penalog";
+  const std::filesystem::path truth_path = mission / "ff1" / "truth.tum";
+  const auto out = FreshDir("one_pipeline_bent_map");
+  const PenaRun run = RunPena("map --quiet --log " + log.string() + " --trajectory " + truth_path.string() +
+                              " --out " + out.string() + " --bent-scans level");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+
+  const geometry::Trajectory truth = io::ReadTum(truth_path);
+  long bent = 0;
+  grid::OccupancyGrid first = MapPassInProcess(log, truth, std::nullopt, bent);
+  EXPECT_EQ(bent, 0);
+  const grid::OccupancyGrid second = MapPassInProcess(log, truth, std::move(first), bent);
+  EXPECT_GT(bent, 20);
+  EXPECT_NE(run.out.find("second pass: " + std::to_string(bent) + " bent"), std::string::npos) << run.out;
+  const auto library = FreshDir("one_pipeline_bent_library");
+  io::WriteRosMap(library / "grid", second.ToImage());
+  EXPECT_EQ(ReadBytes(out / "grid.pgm"), ReadBytes(library / "grid.pgm"));
+  EXPECT_EQ(ReadBytes(out / "grid.yaml"), ReadBytes(library / "grid.yaml"));
 }
 
 TEST(CliOnePipeline, PenaLocaliseAndThePipelineGiveTheSameTrajectory) {
