@@ -68,7 +68,11 @@ line_map::LineMapOptions LineMapOptionsOf(const MapArgs& args) {
 // window only (the paper's online mode), else no line map (the whole-walk grid gives it).
 pipeline::EntityPipelineOptions StagesOptionsOf(const MapArgs& args, const grid::GridOptions& grid) {
   pipeline::EntityPipelineOptions options;
-  options.bent_scans.mode = pipeline::BentScanModeOf(args.bent_scans).value();
+  const std::optional<pipeline::BentScanMode> bent_scans = pipeline::BentScanModeOf(args.bent_scans);
+  if (!bent_scans) {
+    throw std::invalid_argument("--bent-scans must be off, level or drop, got " + args.bent_scans);
+  }
+  options.bent_scans.mode = *bent_scans;
   options.build_line_map = args.online;
   options.local_grid.grid = grid;
   options.extraction = Extraction(args);

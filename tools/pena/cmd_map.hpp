@@ -31,8 +31,8 @@ struct MapArgs {
   double absorb_distance_m = 0.0;  // LineMap absorption of near-duplicates (with the band)
   std::string bent_scans = "off";   // "level" / "drop": two passes, bent scans levelled / left out
   bool online = false;
-  bool slam = true;
-  bool ignore_logged = false;  // run the odometry (+ SLAM) even when the scans carry poses  // without a trajectory and logged poses: odometry + keyframe SLAM
+  bool slam = true;            // without a trajectory and logged poses: odometry + keyframe SLAM
+  bool ignore_logged = false;  // run the odometry (+ SLAM) even when the scans carry poses
   bool quiet = false;
   std::vector<std::string> odometry_settings;  // --set NAME=VALUE, as `pena odometry --set`
   io::ReadOptions read;
