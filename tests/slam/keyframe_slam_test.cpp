@@ -153,6 +153,7 @@ TEST(KeyframeSlam, ClosureRecordsMeasureTheTrueRelativePose) {
 // edge: the heading search is widened, and without room to widen the loop stays open.
 TEST(KeyframeSlam, AHeadingDriftBeyondTheWindowIsFoundByAWiderHeadingSearch) {
   SlamOptions no_room;
+  no_room.loop_wide_window_m = 0.0;  // the narrow window alone
   no_room.loop_window_rad_per_m = 0.0;
   no_room.loop_window_max_rad = no_room.loop_window_rad;
   const DriftedLoop narrow = RunDriftedLoop(no_room);
@@ -174,6 +175,7 @@ TEST(KeyframeSlam, RefusesAMatchOnThePositionEdgeOfTheWindow) {
     return kept;
   };
   SlamOptions narrow_window;
+  narrow_window.loop_wide_window_m = 0.0;  // the narrow window alone
   narrow_window.loop_window_per_m = 0.0;
   narrow_window.loop_window_max_m = narrow_window.loop_window_m;
   const DriftedLoop narrow = RunDriftedLoop(narrow_window, 0.0, 0.4);
@@ -187,6 +189,43 @@ TEST(KeyframeSlam, RefusesAMatchOnThePositionEdgeOfTheWindow) {
   const DriftedLoop wide = RunDriftedLoop(wide_window, 0.0, 0.4);
   EXPECT_GT(after_slip(wide), 0);
   EXPECT_LT(wide.final_m, 0.5 * narrow.final_m);
+}
+
+// A slip of 1.5 m, far beyond the narrow window, which closures on the first lap keep small: the
+// revisit a lap later is found in the wide window, and the loop closes. Without the wide window
+// it stays open. (The window is 1.8 m here: 2 m off the truth, with the scan's origin inside
+// the block, which no submap keyframe saw, the corridor scan fits the block's outer walls, an
+// alias no test of the submap can refute.)
+TEST(KeyframeSlam, AFarRevisitIsClosedInTheWideWindow) {
+  SlamOptions options;
+  options.loop_wide_min_path_m = 20.0;  // the loop is 32 m; a building's are longer
+  options.loop_wide_window_m = 1.8;
+  const DriftedLoop wide = RunDriftedLoop(options, 0.0, 1.5);
+  SlamOptions narrow_only = options;
+  narrow_only.loop_wide_window_m = 0.0;
+  const DriftedLoop narrow = RunDriftedLoop(narrow_only, 0.0, 1.5);
+  EXPECT_GT(narrow.final_m, 1.0);
+  EXPECT_GT(wide.counts.wide_checks, 0);
+  EXPECT_LT(wide.final_m, 0.5 * narrow.final_m);
+}
+
+TEST(KeyframeSlam, TheWideWindowIsOnForRobotsAndOffForPeopleUnlessSet) {
+  EXPECT_EQ(ForEntity({}, sensors::EntityKind::kRobot).loop_wide_window_m, SlamOptions::kRobotWideWindowM);
+  EXPECT_EQ(ForEntity({}, sensors::EntityKind::kHuman).loop_wide_window_m, 0.0);
+  SlamOptions set;
+  set.loop_wide_window_m = 2.5;
+  EXPECT_EQ(ForEntity(set, sensors::EntityKind::kHuman).loop_wide_window_m, 2.5);
+  // A person on the same drifted loop: no wide check is tried.
+  const sim::LaserRaycaster raycaster(CorridorLoop(), 3.0);
+  KeyframeSlam person(SlamOptions{}, sensors::EntityKind::kHuman);
+  const std::vector<Pose2> truth = Walk(1.3);
+  Pose2 odometry = truth.front();
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    if (i > 0) odometry = geometry::Compose(odometry, geometry::Between(truth[i - 1], truth[i]));
+    if (i == kSlipScan) odometry.x_m += 1.5;
+    person.Add(Scan(raycaster, truth[i], 0.1 * static_cast<double>(i)), odometry);
+  }
+  EXPECT_EQ(person.counts().wide_checks, 0);
 }
 
 TEST(KeyframeSlam, KeepsTheOdometryWhenNothingIsRevisited) {

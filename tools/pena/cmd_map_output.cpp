@@ -78,7 +78,8 @@ double Ratio(std::size_t big, std::size_t small) {
 void PrintSlam(const MapRun& run) {
   if (!run.slam) return;
   const slam::SlamCounts& c = *run.slam;
-  std::cout << "slam: " << c.keyframes << " keyframes, " << c.loop_checks << " loop checks, "
+  std::cout << "slam: " << c.keyframes << " keyframes, " << c.loop_checks << " loop checks ("
+            << c.wide_checks << " wide), "
             << c.loop_closures << " closures kept (" << c.loop_rejected << " dropped), "
             << Fixed(run.slam_wall_s, 2) << " s\n";
 }

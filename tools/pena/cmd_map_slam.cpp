@@ -37,6 +37,8 @@ SettingTargets SlamTargets(slam::SlamOptions& o) {
                      {"loop_window_per_m", &o.loop_window_per_m},
                      {"loop_window_max_m", &o.loop_window_max_m},
                      {"loop_min_score", &o.loop_min_score},
+                     {"loop_wide_window_m", &o.loop_wide_window_m},
+                     {"loop_wide_min_path_m", &o.loop_wide_min_path_m},
                      {"degenerate_eigen_ratio", &o.degenerate_eigen_ratio},
                      {"odometry_sigma_m", &o.odometry_sigma_m},
                      {"odometry_sigma_per_m", &o.odometry_sigma_per_m},
@@ -47,7 +49,8 @@ SettingTargets SlamTargets(slam::SlamOptions& o) {
                      {"loop_weak_sigma_max_m", &o.loop_weak_sigma_max_m},
                      {"max_loop_chi2", &o.max_loop_chi2}};
   targets.ints = {{"submap_keyframes", &o.submap_keyframes},
-                  {"loop_check_every", &o.loop_check_every}};
+                  {"loop_check_every", &o.loop_check_every},
+                  {"loop_wide_check_every", &o.loop_wide_check_every}};
   return targets;
 }
 
@@ -125,7 +128,7 @@ std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run
   pipeline::EntityPipeline chain(ChainOptionsOf(args), kind,
                                  description.entity_id.empty() ? "entity" : description.entity_id,
                                  StartPoseOf(read_ahead, *source).world_from_body, stamp_s);
-  slam::KeyframeSlam slam(SlamOptionsOf(args));
+  slam::KeyframeSlam slam(SlamOptionsOf(args), kind);
   ProgressLine progress(!args.quiet);
   auto feed = [&](const sensors::SensorRecord& record) {
     chain.Push(record);

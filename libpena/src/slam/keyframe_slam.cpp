@@ -72,14 +72,14 @@ struct KeyframeSlam::Impl {
     if (index % options.loop_check_every == 0) TryLoopClosure(index);
   }
 
-  // The nearest keyframe at least loop_min_path_m back along the path, within `radius_m`.
-  int LoopCandidate(int index, double radius_m) const {
+  // The nearest keyframe at least `min_path_m` back along the path, within `radius_m`.
+  int LoopCandidate(int index, double radius_m, double min_path_m) const {
     const Pose2& pose = graph.nodes()[static_cast<std::size_t>(index)];
     int best = -1;
     double best_m = radius_m;
     for (int j = 0; j < index; ++j) {
       const internal::Keyframe& old = keyframes[static_cast<std::size_t>(j)];
-      if (keyframes[static_cast<std::size_t>(index)].path_m - old.path_m < options.loop_min_path_m) {
+      if (keyframes[static_cast<std::size_t>(index)].path_m - old.path_m < min_path_m) {
         break;
       }
       const double d = Distance(pose, graph.nodes()[static_cast<std::size_t>(j)]);
@@ -110,28 +110,116 @@ struct KeyframeSlam::Impl {
     const double half_rad =
         std::min(options.loop_window_max_rad,
                  options.loop_window_rad + options.loop_window_rad_per_m * since_m);
-    const int candidate = LoopCandidate(index, half_m + options.keyframe_distance_m);
+    const int candidate =
+        LoopCandidate(index, half_m + options.keyframe_distance_m, options.loop_min_path_m);
+    if (candidate >= 0) {
+      if (auto found = MatchCandidate(index, candidate, half_m, half_rad)) {
+        if (Close(*found)) {
+          if (pending) Refuse(*pending);  // the graph moved: its correction is stale
+          return true;
+        }
+      }
+    }
+    return TryWideClosure(index);
+  }
+
+  // A match found, not yet in the graph.
+  struct Found {
+    int centre = 0;
+    int index = 0;
+    internal::LoopMatch match;
+    LoopClosureRecord record;
+    // The world correction the match asks for: it moves the new keyframe's graph pose onto the
+    // matched one (world_from_world').
+    Pose2 correction;
+  };
+  std::optional<Found> pending;  // a wide closure held for confirmation
+
+  // A revisit after a long walk, beyond the narrow window: searched in the wide window around the
+  // nearest keyframe at least loop_wide_min_path_m back, every loop_wide_check_every keyframes
+  // (every keyframe while a wide closure is held). A wide match is an alias as often as not, so
+  // it is held until the wide match of a later keyframe, at most loop_wide_check_every
+  // keyframes on, asks for the same world correction within the narrow window; then both close.
+  bool TryWideClosure(int index) {
+    if (pending && index - pending->index > options.loop_wide_check_every) Refuse(*pending);
+    if (options.loop_wide_window_m <= 0.0 ||
+        (!pending && index % options.loop_wide_check_every != 0)) {
+      return false;
+    }
+    const int candidate = LoopCandidate(
+        index, options.loop_wide_window_m + options.keyframe_distance_m, options.loop_wide_min_path_m);
     if (candidate < 0) return false;
+    ++counts.wide_checks;
+    // The window doubles from twice the narrow one up to loop_wide_window_m, and the first whose
+    // best pose is inside it (not on its edge) answers: of two places that fit, the one nearer
+    // the graph's prediction is taken, and a farther alias is found only where nothing nearer
+    // fits.
+    std::optional<Found> found;
+    for (double half_m = 2.0 * options.loop_window_m; !found;
+         half_m = std::min(2.0 * half_m, options.loop_wide_window_m)) {
+      found = MatchCandidate(index, candidate, half_m, options.loop_window_max_rad);
+      if (half_m >= options.loop_wide_window_m) break;
+    }
+    if (!found) return false;
+    if (!pending) {
+      pending = std::move(found);
+      return false;
+    }
+    const Pose2& node = graph.nodes()[static_cast<std::size_t>(index)];
+    const Pose2 apart = geometry::Between(geometry::Compose(pending->correction, node),
+                                          geometry::Compose(found->correction, node));
+    if (std::hypot(apart.x_m, apart.y_m) > options.loop_window_m ||
+        std::abs(apart.theta_rad) > options.loop_window_rad) {
+      Refuse(*pending);
+      pending = std::move(found);
+      return false;
+    }
+    Found held = std::move(*pending);
+    pending.reset();
+    const bool first = Close(held);
+    const bool second = Close(*found);
+    return first || second;
+  }
+
+  std::optional<Found> MatchCandidate(int index, int candidate, double half_m, double half_rad) {
     ++counts.loop_checks;
     const auto match = submaps.Match(keyframes, graph.nodes(), candidate, options.submap_keyframes,
                                      LastAllowed(index, options.loop_min_path_m), graph_version,
                                      keyframes[static_cast<std::size_t>(index)].points,
                                      Prior(candidate, index), half_m, half_rad);
-    if (!match) return false;
+    if (!match) return std::nullopt;
     ++counts.loop_matched;
-    LoopClosureRecord record{keyframes[static_cast<std::size_t>(candidate)].stamp_s,
-                             keyframes[static_cast<std::size_t>(index)].stamp_s,
-                             match->centre_from_scan, Prior(candidate, index), match->score, half_m,
-                             false};
-    record.kept = AddMatchEdge(candidate, index, *match);
-    closures.push_back(record);
-    if (!record.kept) {
+    Found found{candidate, index, *match,
+                LoopClosureRecord{keyframes[static_cast<std::size_t>(candidate)].stamp_s,
+                                  keyframes[static_cast<std::size_t>(index)].stamp_s,
+                                  match->centre_from_scan, Prior(candidate, index), match->score,
+                                  half_m, false},
+                {}};
+    const Pose2& centre_pose = graph.nodes()[static_cast<std::size_t>(candidate)];
+    const Pose2& node = graph.nodes()[static_cast<std::size_t>(index)];
+    found.correction = geometry::Compose(geometry::Compose(centre_pose, match->centre_from_scan),
+                                         geometry::Inverse(node));
+    return found;
+  }
+
+  // Adds the closure unless it contradicts the optimised graph; records it.
+  bool Close(Found& found) {
+    found.record.kept = AddMatchEdge(found.centre, found.index, found.match);
+    closures.push_back(found.record);
+    if (!found.record.kept) {
       ++counts.loop_rejected;
       return false;
     }
     ++counts.loop_closures;
     last_closure_path_m = path_m;
     return true;
+  }
+
+  void Refuse(Found& found) {
+    found.record.kept = false;
+    closures.push_back(found.record);
+    ++counts.loop_rejected;
+    if (pending && &found == &*pending) pending.reset();
   }
 
   Pose2 Prior(int centre, int index) const {
@@ -166,9 +254,9 @@ struct KeyframeSlam::Impl {
   }
 };
 
-KeyframeSlam::KeyframeSlam(const SlamOptions& options) {
+KeyframeSlam::KeyframeSlam(const SlamOptions& options, sensors::EntityKind kind) {
   ValidateSlamOptions(options);
-  impl_ = std::make_unique<Impl>(options);
+  impl_ = std::make_unique<Impl>(ForEntity(options, kind));
 }
 
 KeyframeSlam::~KeyframeSlam() = default;
@@ -185,7 +273,10 @@ Pose2 KeyframeSlam::Add(const sensors::LaserScan& scan, const Pose2& world_from_
   return s.Corrected(s.scans.back());
 }
 
-void KeyframeSlam::Finish() { impl_->Optimize(); }
+void KeyframeSlam::Finish() {
+  if (impl_->pending) impl_->Refuse(*impl_->pending);  // never confirmed
+  impl_->Optimize();
+}
 
 geometry::Trajectory KeyframeSlam::Trajectory() const {
   geometry::Trajectory trajectory;

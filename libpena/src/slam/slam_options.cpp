@@ -21,6 +21,14 @@ void RequireNonNegative(double value, const char* field, const char* unit) {
 
 }  // namespace
 
+SlamOptions ForEntity(SlamOptions options, sensors::EntityKind kind) {
+  if (options.loop_wide_window_m == SlamOptions::kAutoWideWindow) {
+    options.loop_wide_window_m =
+        kind == sensors::EntityKind::kRobot ? SlamOptions::kRobotWideWindowM : 0.0;
+  }
+  return options;
+}
+
 void ValidateSlamOptions(const SlamOptions& o) {
   RequirePositive(o.keyframe_distance_m, "keyframe_distance_m", "m");
   RequirePositive(o.keyframe_angle_rad, "keyframe_angle_rad", "rad");
@@ -40,6 +48,12 @@ void ValidateSlamOptions(const SlamOptions& o) {
   RequirePositive(o.loop_window_max_rad, "loop_window_max_rad", "rad");
   RequireOption(o.loop_min_score > 0.0 && o.loop_min_score <= 1.0, "slam", "loop_min_score",
                 "in (0, 1]", o.loop_min_score);
+  RequireOption((o.loop_wide_window_m >= 0.0 && std::isfinite(o.loop_wide_window_m)) ||
+                    o.loop_wide_window_m == SlamOptions::kAutoWideWindow,
+                "slam", "loop_wide_window_m", ">= 0 m (or -1: by entity kind)", o.loop_wide_window_m);
+  RequireNonNegative(o.loop_wide_min_path_m, "loop_wide_min_path_m", "m");
+  RequireOption(o.loop_wide_check_every >= 1, "slam", "loop_wide_check_every", ">= 1",
+                o.loop_wide_check_every);
   RequireNonNegative(o.degenerate_eigen_ratio, "degenerate_eigen_ratio", "(ratio)");
   RequirePositive(o.odometry_sigma_m, "odometry_sigma_m", "m");
   RequireNonNegative(o.odometry_sigma_per_m, "odometry_sigma_per_m", "m/m");

@@ -21,9 +21,10 @@ struct SlamCounts {
   long scans = 0;
   long keyframes = 0;
   long loop_checks = 0;       // matches tried
+  long wide_checks = 0;       // of them in the wide window (loop_wide_window_m)
   long loop_matched = 0;      // scored above loop_min_score and well conditioned
   long loop_closures = 0;     // kept after optimisation
-  long loop_rejected = 0;     // dropped by the chi2 test after optimisation
+  long loop_rejected = 0;     // dropped by the chi2 test after optimisation, or wide and unconfirmed
   long optimisations = 0;
 };
 
@@ -36,14 +37,17 @@ struct LoopClosureRecord {
   geometry::Pose2 older_from_new_prior;     // predicted by the graph before the match
   double score = 0.0;                       // eq. 2 at the best grid pose
   double window_half_m = 0.0;               // search half-width (grows since the last closure)
-  bool kept = false;                        // false: dropped by the chi2 test (max_loop_chi2)
+  // false: dropped by the chi2 test (max_loop_chi2), or a wide match never confirmed
+  bool kept = false;
 };
 
 // One entity's SLAM. Not thread-safe.
 class KeyframeSlam {
  public:
   // Throws std::invalid_argument naming the field for invalid options.
-  explicit KeyframeSlam(const SlamOptions& options = {});
+  // Automatic options (SlamOptions::kAuto*) are resolved for `kind`.
+  explicit KeyframeSlam(const SlamOptions& options = {},
+                        sensors::EntityKind kind = sensors::EntityKind::kRobot);
   ~KeyframeSlam();
   KeyframeSlam(KeyframeSlam&&) noexcept;
   KeyframeSlam& operator=(KeyframeSlam&&) noexcept;

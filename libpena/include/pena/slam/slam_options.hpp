@@ -2,6 +2,7 @@
 // Options of the keyframe SLAM above the laser odometry (docs/slam.md).
 
 #include "pena/scan_matching/correlation_scan_matcher.hpp"
+#include "pena/sensors/entity.hpp"
 
 namespace pena::slam {
 
@@ -28,6 +29,18 @@ struct SlamOptions {
   // A match on the heading edge is searched again with the heading half-width doubled, up to
   // this; a match on the position edge is refused (submap_matcher.cpp, docs/slam.md).
   double loop_window_max_rad = 0.2617993877991494;   // 15 deg
+  // A revisit after a long walk can be farther off than the narrow window ever grows (the
+  // window restarts at every closure, and closures nearby keep it small): a keyframe without a
+  // closure is also matched, every loop_wide_check_every keyframes, against the submap around the
+  // nearest keyframe at least loop_wide_min_path_m back within this half-width (0: off).
+  // kAutoWideWindow: kRobotWideWindowM for robots, off for people, whose laser odometry drifts
+  // well under the narrow window per loop and whose tilting scans fit aliases along doorless
+  // corridors better than the true place (docs/slam.md, "Wide closures").
+  static constexpr double kAutoWideWindow = -1.0;
+  static constexpr double kRobotWideWindowM = 4.0;
+  double loop_wide_window_m = kAutoWideWindow;
+  double loop_wide_min_path_m = 30.0;
+  int loop_wide_check_every = 5;
   double loop_min_score = 0.6;       // eq. 2 score a closure needs
   double degenerate_eigen_ratio = 0.05;  // translation eigenvalue ratio below: corridor, refused
   int loop_check_every = 1;          // try a closure at every n-th keyframe
@@ -50,6 +63,9 @@ struct SlamOptions {
   int optimize_iterations = 10;
   double max_loop_chi2 = 25.0;  // a closure disagreeing more than this after optimising is dropped
 };
+
+// The automatic options resolved for an entity kind.
+SlamOptions ForEntity(SlamOptions options, sensors::EntityKind kind);
 
 // Throws std::invalid_argument naming the field and its unit, e.g.
 // "slam.keyframe_distance_m must be > 0 m, got -1".
