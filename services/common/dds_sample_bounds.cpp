@@ -42,6 +42,8 @@ void WalkSegment(Cdr& cdr) {
   Skip<std::uint32_t>(cdr);  // rms_error_100um
   const std::uint32_t entries = Length(cdr, pena_dds::PROVENANCE_MAX);
   for (std::uint32_t i = 0; i < entries; ++i) Skip<std::string>(cdr);
+  Skip<std::uint16_t>(cdr);  // seen_by_entities
+  Skip<std::uint16_t>(cdr);  // error_sd_cm
 }
 
 void WalkSegments(Cdr& cdr, std::uint32_t max) {

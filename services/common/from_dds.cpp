@@ -64,6 +64,8 @@ line_map::LineSegment FromDds(const pena_dds::Segment& segment) {
   out.rms_error_m = FromQuanta(segment.rms_error_100um(), line_map::kRmsQuantumM);
   out.provenance.reserve(segment.provenance().size());
   for (const auto& entry : segment.provenance()) out.provenance.push_back(entry.to_string());
+  out.seen_by_entities = segment.seen_by_entities();
+  out.error_sd_m = FromQuanta(segment.error_sd_cm(), line_map::kErrorSdQuantumM);
   return out;
 }
 

@@ -119,6 +119,18 @@ pena_dds::Segment ToDds(const line_map::LineSegment& segment) {
   for (std::size_t i = 0; i < segment.provenance.size(); ++i) {
     SetBounded(out.provenance()[i], segment.provenance[i], "segment.provenance entry");
   }
+  if (segment.seen_by_entities > std::numeric_limits<std::uint16_t>::max()) {
+    throw std::invalid_argument("segment.seen_by_entities must be <= 65535, got " +
+                                std::to_string(segment.seen_by_entities));
+  }
+  out.seen_by_entities(static_cast<std::uint16_t>(segment.seen_by_entities));
+  const std::int32_t sd_cm = Quanta32(segment.error_sd_m, line_map::kErrorSdQuantumM,
+                                      "segment.error_sd");
+  if (sd_cm < 0 || sd_cm > std::numeric_limits<std::uint16_t>::max()) {
+    throw std::invalid_argument("segment.error_sd_m must be in [0, 655.35] m, got " +
+                                std::to_string(segment.error_sd_m));
+  }
+  out.error_sd_cm(static_cast<std::uint16_t>(sd_cm));
   return out;
 }
 

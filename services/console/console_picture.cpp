@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace pena::services {
 namespace {
@@ -12,15 +14,31 @@ using nlohmann::json;
 
 double Ms(std::int64_t ns) { return static_cast<double>(ns / 1'000'000); }
 
-// [id, x0, y0, x1, y1, observed]: metres, map frame.
+// The entities among a global wall's provenance keys ("ff1:12" -> "ff1"), sorted, once each.
+std::vector<std::string> MappedBy(const line_map::LineSegment& s) {
+  std::vector<std::string> names;
+  for (const std::string& key : s.provenance) {
+    const std::size_t colon = key.rfind(':');
+    if (key.empty() || key[0] == '#' || colon == std::string::npos || colon == 0) continue;
+    if (std::string name = key.substr(0, colon); name != "plan") names.push_back(std::move(name));
+  }
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  return names;
+}
+
+// [id, x0, y0, x1, y1, observed, seen_by_entities, error_sd_m, [entities whose walls are in it]]:
+// metres, map frame; the support as pena-fusion published it (0, 0 when it has none).
 json SegmentJson(const line_map::LineSegment& s) {
   return json::array({s.id, s.segment.start_m.x(), s.segment.start_m.y(), s.segment.end_m.x(),
-                      s.segment.end_m.y(), IsObserved(s) ? 1 : 0});
+                      s.segment.end_m.y(), IsObserved(s) ? 1 : 0, s.seen_by_entities,
+                      s.error_sd_m, MappedBy(s)});
 }
 
 bool SameDrawing(const line_map::LineSegment& a, const line_map::LineSegment& b) {
   return a.segment.start_m == b.segment.start_m && a.segment.end_m == b.segment.end_m &&
-         IsObserved(a) == IsObserved(b);
+         IsObserved(a) == IsObserved(b) && a.seen_by_entities == b.seen_by_entities &&
+         a.error_sd_m == b.error_sd_m && MappedBy(a) == MappedBy(b);
 }
 
 json TrailJson(const geometry::Trajectory& trail, std::size_t from) {

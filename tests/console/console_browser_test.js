@@ -215,6 +215,7 @@ async function run(browser, o) {
 
   await page.screenshot({ path: path.join(o.out, 'console.png') });
   await exports(page, o);
+  await confidence(page);
   if (pageErrors.length) fail(`errors in the page: ${pageErrors.join('; ')}`);
   console.log('PASS');
 }
@@ -272,6 +273,57 @@ async function exports(page, o) {
   if (!shown.png.startsWith('data:image/png;base64,') || shown.png.length < 10000) fail('the PNG export is empty');
   console.log(`exports: SVG with ${walls} walls and ${Object.keys(shown.entities).length} entities where the canvas has them, ` +
               `PNG of ${Math.round(shown.png.length * 0.75 / 1024)} KiB`);
+}
+
+// The support pena-fusion publishes per wall is drawn: a wall one entity alone saw is fainter
+// than a wall several entities saw (pixels sampled along each, at the middle of the view), and
+// hovering it names who saw it.
+async function confidence(page) {
+  const pickWalls = () => page.evaluate(() => {
+    const walls = [...window.penaConsole.state.segments.entries()]
+      .filter(([, s]) => s[4] && Math.hypot(s[2] - s[0], s[3] - s[1]) >= 1.0)
+      .sort((a, b) => Math.hypot(b[1][2] - b[1][0], b[1][3] - b[1][1]) - Math.hypot(a[1][2] - a[1][0], a[1][3] - a[1][1]));
+    return { lone: walls.find(([, s]) => s[5] === 1), team: walls.find(([, s]) => s[5] >= 2) };
+  });
+  let walls = await pickWalls();
+  for (const until = Date.now() + 30000; (!walls.lone || !walls.team) && Date.now() < until;) {
+    await sleep(500);
+    walls = await pickWalls();
+  }
+  if (!walls.lone || !walls.team) fail('no wall of 1 m or more seen by one entity and one seen by several');
+  const drawnAt = (wall) => page.evaluate(([id, s]) => {
+    const c = window.penaConsole;
+    c.view.follow = '';
+    c.view.cx = (s[0] + s[2]) / 2;
+    c.view.cy = (s[1] + s[3]) / 2;
+    c.view.scale = 40;
+    c.mapChanged();
+    c.redraw();
+    const ctx = document.getElementById('map').getContext('2d');
+    const grey = [];
+    for (const t of [0.3, 0.4, 0.5, 0.6, 0.7]) {
+      const [sx, sy] = c.toScreen(s[0] + t * (s[2] - s[0]), s[1] + t * (s[3] - s[1]));
+      const p = ctx.getImageData(Math.round(sx), Math.round(sy), 1, 1).data;
+      grey.push((p[0] + p[1] + p[2]) / 3);
+    }
+    grey.sort((a, b) => a - b);
+    return { id, grey: grey[2], style: c.wallStyle(s).name, seen: s[5], by: s[7] };
+  }, wall);
+  const lone = await drawnAt(walls.lone), team = await drawnAt(walls.team);
+  console.log(`confidence: wall ${lone.id} (seen by ${lone.by.join(' ')}) drawn ${lone.style}, grey ${lone.grey.toFixed(0)}; ` +
+              `wall ${team.id} (seen by ${team.seen}: ${team.by.join(' ')}) drawn ${team.style}, grey ${team.grey.toFixed(0)}`);
+  if (lone.style !== 'one' || team.style !== 'team') fail(`walls drawn as ${lone.style} and ${team.style}`);
+  if (!(lone.grey > team.grey + 80)) fail(`the lone wall (grey ${lone.grey}) is not drawn fainter than the team's (${team.grey})`);
+  // Hovering the lone wall: the tooltip names who saw it.
+  await drawnAt(walls.lone);
+  const [sx, sy] = await page.evaluate((s) => window.penaConsole.toScreen((s[0] + s[2]) / 2, (s[1] + s[3]) / 2), walls.lone[1]);
+  const box = await (await page.$('#map')).boundingBox();
+  await page.mouse.move(box.x + sx, box.y + sy);
+  const title = await page.evaluate(() => document.getElementById('map').title);
+  console.log(`confidence: tooltip "${title}"`);
+  if (!title.includes('seen by 1 entity') || !lone.by.every((who) => title.includes(who))) {
+    fail(`the tooltip over wall ${lone.id} says "${title}"`);
+  }
 }
 
 // Both pages at the same map version show the same walls and the same entities.

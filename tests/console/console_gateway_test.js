@@ -200,6 +200,35 @@ async function run(o, postBrowser, buildingBrowser) {
   console.log(`pose age at the command post's page (${ages.length} poses, entity -> link -> page): ` +
               `p50 ${(percentile(ages, 0.5) / 1000).toFixed(2)} s, p99 ${(percentile(ages, 0.99) / 1000).toFixed(2)} s, ` +
               `max ${(percentile(ages, 1) / 1000).toFixed(2)} s`);
+
+  // ---- 5. the walls' support crosses the link: at one map version both pages hold the same
+  // walls, who saw each and its estimated error included ----
+  const picture = (page) => page.evaluate(() => ({
+    version: window.penaConsole.state.mapVersion,
+    walls: JSON.stringify([...window.penaConsole.state.segments.entries()].sort((a, b) => a[0] - b[0])),
+  }));
+  // The command post lags behind the link: the building's pictures are kept by version until the
+  // post shows one of them.
+  const history = new Map();
+  let logged = 0;
+  const [atPost, inBuilding] = await until('the command post showed no map version the building had shown', 90000,
+                                           async () => {
+    const b = await picture(building);
+    history.set(b.version, b);
+    const p = await picture(post);
+    if (Date.now() - logged > 10000) {
+      console.log(`  map version ${p.version} at the command post, ${b.version} in the building`);
+      logged = Date.now();
+    }
+    return p.version > 0 && history.has(p.version) ? [p, history.get(p.version)] : null;
+  });
+  if (atPost.walls !== inBuilding.walls) fail(`at map version ${atPost.version} the command post's walls differ from the building's`);
+  const walls = JSON.parse(atPost.walls);
+  const lone = walls.filter(([, w]) => w[4] && w[5] === 1).length;
+  const several = walls.filter(([, w]) => w[5] >= 2).length;
+  console.log(`walls at the command post, map version ${atPost.version}: ${walls.length}, ${lone} seen by one entity, ` +
+              `${several} by several, the same as in the building`);
+  if (!lone || !several) fail(`the command post's walls carry no support (${lone} lone, ${several} by several)`);
   await post.screenshot({ path: path.join(o.out, 'console_post_end.png') });
   await building.screenshot({ path: path.join(o.out, 'console_building_end.png') });
   if (pageErrors.length) fail(`page errors: ${pageErrors.join('; ')}`);

@@ -60,6 +60,45 @@ TEST(ConsolePicture, SnapshotHoldsWhatTheDeltasSent) {
   EXPECT_EQ(snapshot["map"]["segments"][1][5], 1);  // observed
 }
 
+TEST(ConsolePicture, WallsCarryWhoSawThemAndAChangeOfSupportIsSentAgain) {
+  ConsolePicture picture;
+  line_map::MapSnapshot map;
+  map.version = 1;
+  map.next_id = 3;
+  line_map::LineSegment lone = Wall(1, 0.0, "ff2:3");
+  lone.seen_by_entities = 1;
+  lone.error_sd_m = 0.23;
+  line_map::LineSegment both = Wall(2, 2.0, "ff1:7");
+  both.provenance = {"ff1:7", "ff3:2", "ff1:9", "plan:4"};
+  both.seen_by_entities = 3;  // one entity's copy was withheld: counted, not in the provenance
+  both.error_sd_m = 0.05;
+  map.segments = {lone, both};
+  picture.OnMapSnapshot(map);
+  ASSERT_TRUE(picture.TakeDelta(kSecond));
+  const nlohmann::json shown = picture.Snapshot(kSecond)["map"]["segments"];
+  ASSERT_EQ(shown.size(), 2u);
+  EXPECT_EQ(shown[0][6], 1);
+  EXPECT_DOUBLE_EQ(shown[0][7].get<double>(), 0.23);
+  EXPECT_EQ(shown[0][8], nlohmann::json::array({"ff2"}));
+  EXPECT_EQ(shown[1][6], 3);
+  EXPECT_EQ(shown[1][8], nlohmann::json::array({"ff1", "ff3"}));
+
+  // A second entity confirms the lone wall: same geometry, new support, sent again.
+  line_map::MapDelta confirmed;
+  confirmed.from_version = 1;
+  confirmed.to_version = 2;
+  confirmed.changed = {lone};
+  confirmed.changed[0].provenance = {"ff1:11", "ff2:3"};
+  confirmed.changed[0].seen_by_entities = 2;
+  confirmed.changed[0].error_sd_m = 0.08;
+  picture.OnMapDelta(confirmed);
+  const auto delta = picture.TakeDelta(kSecond);
+  ASSERT_TRUE(delta);
+  ASSERT_EQ((*delta)["map"]["upsert"].size(), 1u);
+  EXPECT_EQ((*delta)["map"]["upsert"][0][6], 2);
+  EXPECT_EQ((*delta)["map"]["upsert"][0][8], nlohmann::json::array({"ff1", "ff2"}));
+}
+
 TEST(ConsolePicture, EarlyDeltaWaitsForItsPredecessor) {
   ConsolePicture picture;
   line_map::MapDelta second;

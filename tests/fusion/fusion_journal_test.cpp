@@ -2,6 +2,7 @@
 // record is dropped with a message, corruption elsewhere is an error naming file and byte.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -86,6 +87,11 @@ TEST(FusionCodec, RoundTripsEveryInputAndACheckpointExactly) {
   }
   const std::string checkpoint = EncodeCheckpoint(state.Checkpoint());
   EXPECT_EQ(EncodeCheckpoint(DecodeCheckpoint(checkpoint)), checkpoint);
+  // The global map keeps its walls' support (a restarted fusion would else re-send every wall).
+  const line_map::MapSnapshot global = DecodeCheckpoint(checkpoint).global;
+  EXPECT_TRUE(line_map::SameMap(global, state.GlobalSnapshot()));
+  EXPECT_TRUE(std::any_of(global.segments.begin(), global.segments.end(),
+                          [](const auto& wall) { return wall.seen_by_entities > 0; }));
   EXPECT_THROW(DecodeCheckpoint(checkpoint.substr(0, checkpoint.size() - 3)), io::InputError);
   EXPECT_THROW(DecodeInput("\x02garbage"), io::InputError);
 }

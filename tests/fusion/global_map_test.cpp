@@ -177,6 +177,15 @@ TEST(GlobalMap, PublishesTheLoneWallsOfAnEntityThatDisagreesWithTheOthers) {
   EXPECT_NEAR(ff1_alone.error_sd_m, std::sqrt((5 * 0.0025 + 6 * 0.16) / 19.0), 0.02);
   EXPECT_LT(ff2_alone.error_sd_m, 0.06);
   EXPECT_LT(both.error_sd_m, ff2_alone.error_sd_m);
+  // The published walls carry it (what the gateway and the console get): the entities counted,
+  // the sd on 1 cm quanta.
+  for (const auto& [wall, seen] : {std::pair{at_y(2.0), 2u}, std::pair{at_y(4.0), 1u},
+                                   std::pair{at_y(-3.0), 1u}}) {
+    EXPECT_EQ(wall->seen_by_entities, seen) << "wall " << wall->id;
+    EXPECT_EQ(wall->error_sd_m,
+              line_map::Quantise(support.at(wall->id).error_sd_m, line_map::kErrorSdQuantumM));
+  }
+  EXPECT_GT(at_y(4.0)->error_sd_m, 0.0);
   // The agreement behind it.
   GlobalMap global;
   line_map::LineMap ff1_map, ff2_map;

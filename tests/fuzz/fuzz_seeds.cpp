@@ -140,6 +140,15 @@ void Dds() {
       std::string(1, '\0') + Cdr<pena_dds::LineMapDeltaPubSubType>(services::ToDdsLineMapDelta(delta, "ff1", 1.0)));
   Put("fuzz_from_dds", "line-map-snapshot",
       std::string(1, '\1') + Cdr<pena_dds::LineMapSnapshotPubSubType>(services::ToDdsLineMapSnapshot(snapshot, "ff1", 1.0)));
+  // The global map as pena-fusion publishes it: walls with their support (who saw them, error sd).
+  line_map::MapDelta global = delta;
+  for (std::size_t i = 0; i < global.added.size(); ++i) {
+    global.added[i].seen_by_entities = static_cast<std::uint32_t>(i + 1);
+    global.added[i].error_sd_m = line_map::Quantise(0.04 * static_cast<double>(i + 1), line_map::kErrorSdQuantumM);
+  }
+  Put("fuzz_from_dds", "global-map-delta",
+      std::string(1, '\2') + Cdr<pena_dds::GlobalMapDeltaPubSubType>(services::ToDdsGlobalMapDelta(global, "global", 1.0)));
+  Put("fuzz_line_map_codec", "global-delta", std::string(1, '\0') + io::EncodeDelta(global));
   pena_dds::Correction correction;
   correction.schema_version(pena_dds::SCHEMA_VERSION);
   correction.entity_id("ff1");

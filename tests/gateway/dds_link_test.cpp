@@ -6,10 +6,12 @@
 // frame (16 KiB), so they cross in fragments.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <mutex>
 #include <thread>
+#include <utility>
 
 #include "dds_endpoints.hpp"
 #include "from_dds.hpp"
@@ -204,7 +206,19 @@ TEST(GatewayDds, PosesAndLargeMapsCrossBetweenTwoDomains) {
   const line_map::MapDelta big = source.Integrate(Walls(2040, 60), "global");
   ASSERT_GT(LinkBytes(MapChange{"global", big, false}), FrameLimits{}.max_payload_bytes);
   const line_map::MapDelta small = source.Integrate(Walls(3, 120), "global");
-  for (const line_map::MapDelta* delta : {&big, &small}) {
+  // Then the fusion's support of those walls (who saw them, the estimated error sd), as a rebuild
+  // publishes it: one entity alone, two, and a plan-only piece.
+  line_map::MapDelta supported;
+  supported.from_version = source.version();
+  supported.to_version = source.version() + 1;
+  supported.changed = small.added;
+  const std::vector<std::pair<std::uint32_t, double>> support = {{1, 0.23}, {2, 0.07}, {0, 0.0}};
+  for (std::size_t i = 0; i < support.size(); ++i) {
+    supported.changed[i].seen_by_entities = support[i].first;
+    supported.changed[i].error_sd_m = line_map::Quantise(support[i].second, line_map::kErrorSdQuantumM);
+  }
+  ASSERT_TRUE(source.Apply(supported).ok());
+  for (const line_map::MapDelta* delta : {&big, &small, &std::as_const(supported)}) {
     pena_dds::GlobalMapDelta sample = services::ToDdsGlobalMapDelta(*delta, "global", 2.0);
     ASSERT_TRUE(delta_writer.Write(sample));
   }
@@ -215,8 +229,17 @@ TEST(GatewayDds, PosesAndLargeMapsCrossBetweenTwoDomains) {
 
   std::lock_guard<std::mutex> lock(coordinator.mutex);
   EXPECT_TRUE(line_map::SameMap(coordinator.map->Snapshot(), source.Snapshot()));
+  const std::vector<line_map::LineSegment> arrived = coordinator.map->segments();
+  for (std::size_t i = 0; i < support.size(); ++i) {
+    const std::int64_t id = supported.changed[i].id;
+    const auto wall = std::find_if(arrived.begin(), arrived.end(),
+                                   [id](const line_map::LineSegment& s) { return s.id == id; });
+    ASSERT_NE(wall, arrived.end()) << "wall " << id;
+    EXPECT_EQ(wall->seen_by_entities, support[i].first) << "wall " << id;
+    EXPECT_NEAR(wall->error_sd_m, support[i].second, 1e-12) << "wall " << id;
+  }
   EXPECT_EQ(coordinator.snapshots, 1U);
-  EXPECT_EQ(coordinator.deltas, 2U);
+  EXPECT_EQ(coordinator.deltas, 3U);
   EXPECT_EQ(coordinator.failed_applies, 0U);
   EXPECT_LE(pair.max_frame_bytes(), 1400U + kFrameHeaderBytes + kFrameTrailerBytes);
   EXPECT_GE(pair.far().stats().updates_reassembled, 2U);

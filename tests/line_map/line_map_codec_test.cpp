@@ -50,6 +50,23 @@ TEST(LineMapCodec, RoundTripsSnapshotExactly) {
   EXPECT_EQ(decoded.next_id, snapshot.next_id);
 }
 
+TEST(LineMapCodec, RoundTripsAGlobalWallsSupport) {
+  LineMap map;
+  for (const auto& batch : testing::WalkLoop(1, 0.02, 1)) map.Integrate(batch, "ff1");
+  MapSnapshot snapshot = map.Snapshot();
+  ASSERT_GE(snapshot.segments.size(), 2u);
+  snapshot.segments[0].seen_by_entities = 3;
+  snapshot.segments[0].error_sd_m = Quantise(0.17, kErrorSdQuantumM);
+  snapshot.segments[1].seen_by_entities = 1;
+  snapshot.segments[1].error_sd_m = kMaxErrorSdM;
+  const MapSnapshot decoded = io::DecodeSnapshot(io::EncodeSnapshot(snapshot));
+  EXPECT_TRUE(SameMap(decoded, snapshot));
+  EXPECT_EQ(decoded.segments[0].seen_by_entities, 3u);
+  EXPECT_EQ(decoded.segments[1].error_sd_m, kMaxErrorSdM);
+  snapshot.segments[1].error_sd_m = 0.125;  // not whole centimetres
+  EXPECT_THROW(io::EncodeSnapshot(snapshot), std::invalid_argument);
+}
+
 void ExpectRejected(const std::string& bytes, const std::string& why) {
   EXPECT_THROW(io::DecodeDelta(bytes, "link"), io::InputError) << why;
   EXPECT_THROW(io::DecodeSnapshot(bytes, "link"), io::InputError) << why;

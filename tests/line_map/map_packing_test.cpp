@@ -131,5 +131,63 @@ TEST(MapPacking, SnapshotWithExtremeValuesRoundTripsExactly) {
   EXPECT_EQ(back->next_id, snapshot.next_id);
 }
 
+// A global wall's support (entities that saw it, error sd in cm) arrives exactly; an entity's map,
+// which has none, pays one bit per message for it, and a global map's delta a few per wall.
+TEST(MapPacking, GlobalWallSupportRoundTripsAndCostsAnEntityMapOneBit) {
+  MapDelta entity;
+  for (int i = 0; i < 40; ++i) {
+    LineSegment s;
+    s.id = i + 1;
+    s.segment.start_m = {0.5 * i, 1.0};
+    s.segment.end_m = {0.5 * i + 0.4, 1.0};
+    s.support_cells = 12.0;
+    s.observations = 30.0;
+    s.provenance = {"ff1"};
+    entity.added.push_back(s);
+  }
+  MapDelta global = entity;
+  for (std::size_t i = 0; i < global.added.size(); ++i) {
+    global.added[i].seen_by_entities = static_cast<std::uint32_t>(1 + i % 3);
+    global.added[i].error_sd_m = FromQuanta(static_cast<std::int64_t>(3 + 7 * i), kErrorSdQuantumM);
+  }
+  global.added.back().error_sd_m = kMaxErrorSdM;
+  global.added.front().seen_by_entities = 0;  // a plan-only piece
+  global.added.front().error_sd_m = 0.0;
+  std::string error;
+  const std::string global_bytes = PackDelta(global);
+  const std::optional<MapDelta> back = UnpackDelta(global_bytes, &error);
+  ASSERT_TRUE(back) << error;
+  ASSERT_EQ(back->added.size(), global.added.size());
+  for (std::size_t i = 0; i < global.added.size(); ++i) {
+    EXPECT_TRUE(SameSegment(back->added[i], global.added[i])) << "wall " << i;
+    EXPECT_EQ(back->added[i].seen_by_entities, global.added[i].seen_by_entities);
+    EXPECT_EQ(back->added[i].error_sd_m, global.added[i].error_sd_m);
+  }
+  const std::string entity_bytes = PackDelta(entity);
+  const std::optional<MapDelta> entity_back = UnpackDelta(entity_bytes, &error);
+  ASSERT_TRUE(entity_back) << error;
+  EXPECT_EQ(entity_back->added.back().seen_by_entities, 0U);
+  EXPECT_EQ(entity_back->added.back().error_sd_m, 0.0);
+  EXPECT_GT(global_bytes.size(), entity_bytes.size());
+  EXPECT_LE(global_bytes.size(), entity_bytes.size() + 2 * global.added.size());
+
+  MapDelta off_quanta = global;
+  off_quanta.added[1].error_sd_m = 0.125;  // not whole centimetres
+  EXPECT_THROW(PackDelta(off_quanta), std::invalid_argument);
+  MapDelta too_large = global;
+  too_large.added[1].error_sd_m = kMaxErrorSdM + kErrorSdQuantumM;
+  EXPECT_THROW(PackDelta(too_large), std::invalid_argument);
+}
+
+TEST(MapPacking, QuantiseSegmentClampsTheErrorSdToItsQuantaAndRange) {
+  LineSegment s;
+  s.error_sd_m = 0.1234;
+  EXPECT_EQ(QuantiseSegment(s).error_sd_m, FromQuanta(12, kErrorSdQuantumM));
+  s.error_sd_m = 1e9;
+  EXPECT_EQ(QuantiseSegment(s).error_sd_m, kMaxErrorSdM);
+  s.error_sd_m = -0.5;
+  EXPECT_EQ(QuantiseSegment(s).error_sd_m, 0.0);
+}
+
 }  // namespace
 }  // namespace pena::line_map

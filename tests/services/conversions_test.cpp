@@ -38,6 +38,27 @@ TEST(Conversions, LineMapDeltasRoundTripExactly) {
   EXPECT_EQ(snapshot.next_id, map.Snapshot().next_id);
 }
 
+TEST(Conversions, GlobalWallSupportRoundTripsAndIsBounded) {
+  line_map::LineMap map;
+  map.Integrate({Wall(0.0, 0.0, 5.0, 0.0), Wall(0.0, 3.0, 5.0, 3.0)}, "global");
+  line_map::MapSnapshot global = map.Snapshot();
+  global.segments[0].seen_by_entities = 2;
+  global.segments[0].error_sd_m = line_map::Quantise(0.14, line_map::kErrorSdQuantumM);
+  global.segments[1].seen_by_entities = 1;
+  global.segments[1].error_sd_m = line_map::kMaxErrorSdM;
+  const pena_dds::GlobalMapSnapshot sample = ToDdsGlobalMapSnapshot(global, "global", 1.0);
+  EXPECT_EQ(sample.segments()[0].seen_by_entities(), 2);
+  EXPECT_EQ(sample.segments()[0].error_sd_cm(), 14);
+  EXPECT_EQ(sample.segments()[1].error_sd_cm(), 65535);
+  EXPECT_TRUE(line_map::SameMap(FromDds(sample), global));
+  line_map::LineSegment crowded = global.segments[0];
+  crowded.seen_by_entities = 70000;
+  EXPECT_THROW(ToDds(crowded), std::invalid_argument);
+  line_map::LineSegment vague = global.segments[0];
+  vague.error_sd_m = 700.0;
+  EXPECT_THROW(ToDds(vague), std::invalid_argument);
+}
+
 TEST(Conversions, TooLongIdsAndListsAreRefusedNamingTheField) {
   line_map::LineMap map;
   const line_map::MapDelta delta = map.Integrate({Wall(0.0, 0.0, 5.0, 0.0)}, "ff1");

@@ -27,7 +27,7 @@ std::string Entry(char tag, std::uint32_t i) {
   return entry;
 }
 
-// A segment with a full provenance list whose first entry starts with `tag`.
+// A segment with a full provenance list whose first entry starts with `tag`, and support.
 pena_dds::Segment FullSegment(std::int64_t id, char tag) {
   pena_dds::Segment segment;
   segment.id(id);
@@ -40,6 +40,10 @@ pena_dds::Segment FullSegment(std::int64_t id, char tag) {
   for (std::uint32_t i = 0; i < pena_dds::PROVENANCE_MAX; ++i) {
     segment.provenance().push_back(Entry(i == 0 ? tag : 'p', i).c_str());
   }
+  // The global map's support after the provenance: a walk that did not step over it would read
+  // the next list's length from it (3 + 12 x 65536, beyond every bound) and refuse a good sample.
+  segment.seen_by_entities(3);
+  segment.error_sd_cm(12);
   return segment;
 }
 

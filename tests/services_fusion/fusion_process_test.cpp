@@ -21,6 +21,7 @@
 #include "pena/io/line_csv.hpp"
 #include "pena/io/trajectory_io.hpp"
 #include "pena/line_map/line_map.hpp"
+#include "pena/line_map/map_packing.hpp"
 #include "pena/sim/mission_writer.hpp"
 #include "pena/sim/scenario.hpp"
 #include "pena/sim/simulator.hpp"
@@ -199,6 +200,9 @@ TEST(FusionProcess, TeamGlobalMapCoversObservedWallsAndLateJoinerGetsItWithinTwo
   std::getline(support, line);
   EXPECT_EQ(line, "id,seen_by,error_sd_m");
   std::size_t supported = 0;
+  std::map<std::uint32_t, int> walls_by_entities;
+  std::map<std::int64_t, line_map::LineSegment> received;
+  for (const line_map::LineSegment& wall : listener.map.segments()) received[wall.id] = wall;
   for (; std::getline(support, line); ++supported) {
     ASSERT_LT(supported, rows.size()) << line;
     const std::size_t comma = line.find(',');
@@ -210,8 +214,32 @@ TEST(FusionProcess, TeamGlobalMapCoversObservedWallsAndLateJoinerGetsItWithinTwo
     if (seen_by == "plan") {
       EXPECT_EQ(sd_m, 0.0) << line;
     }
+    // The published wall carries the same support over DDS: the entities among seen_by, the
+    // sd on 1 cm quanta (the file prints it to 1 mm).
+    std::uint32_t entities = 0;
+    std::istringstream names(seen_by);
+    for (std::string who; names >> who;) entities += who == "plan" ? 0 : 1;
+    const auto wall = received.find(rows[supported].id);
+    ASSERT_NE(wall, received.end()) << line;
+    EXPECT_EQ(wall->second.seen_by_entities, entities) << line;
+    EXPECT_NEAR(wall->second.error_sd_m, sd_m, 0.0051) << line;
+    ++walls_by_entities[entities];
   }
   EXPECT_EQ(supported, rows.size());
+  EXPECT_GT(walls_by_entities[1], 0) << "walls one entity alone saw";
+  EXPECT_GT(walls_by_entities[2] + walls_by_entities[3] + walls_by_entities[4], 0)
+      << "walls several entities saw";
+  // What the support costs on the radio link: the map packed as the gateway packs it, with and
+  // without it (docs/gateway.md).
+  line_map::MapSnapshot packed = listener.map.Snapshot();
+  const std::size_t with_support = line_map::PackSnapshot(packed).size();
+  for (line_map::LineSegment& wall : packed.segments) {
+    wall.seen_by_entities = 0;
+    wall.error_sd_m = 0.0;
+  }
+  std::printf("[ figures  ] global map of %zu walls (%d seen by one entity) packed: %zu B with "
+              "support, %zu B without\n", packed.segments.size(), walls_by_entities[1],
+              with_support, line_map::PackSnapshot(packed).size());
   const auto observed = io::ReadLineCsv(TeamMission() / "observed.csv");
   std::vector<geometry::Segment2> walls;
   for (const io::LineRow& row : observed) walls.push_back(row.segment);

@@ -1,5 +1,7 @@
 #include "fusion_fields.hpp"
 
+#include <limits>
+
 // Field layouts of the fusion codec (docs/formats.md): fixed-width little-endian numbers, doubles
 // by their bits, lists as a u64 count and items.
 
@@ -41,6 +43,13 @@ void Put(ByteWriter& w, const line_map::LineSegment& s) {
   }
   w.U64(s.provenance.size());
   for (const std::string& entry : s.provenance) w.Text(entry);
+  // A global wall's support (version 4): one byte when there is none (an entity's walls).
+  const bool supported = s.seen_by_entities != 0 || s.error_sd_m != 0.0;
+  w.U8(supported ? 1 : 0);
+  if (supported) {
+    w.U64(s.seen_by_entities);
+    w.F64(s.error_sd_m);
+  }
 }
 line_map::LineSegment GetSegment(ByteReader& r) {
   line_map::LineSegment s;
@@ -54,6 +63,16 @@ line_map::LineSegment GetSegment(ByteReader& r) {
   s.rms_error_m = r.F64();
   s.provenance.resize(r.Count(8));
   for (std::string& entry : s.provenance) entry = r.Text();
+  if (r.version() >= 4) {  // before it, no wall carried its support
+    const std::uint8_t supported = r.U8();
+    if (supported > 1) r.Fail("support flag " + std::to_string(supported));
+    if (supported == 1) {
+      const std::uint64_t seen_by = r.U64();
+      if (seen_by > std::numeric_limits<std::uint32_t>::max()) r.Fail("seen_by_entities " + std::to_string(seen_by));
+      s.seen_by_entities = static_cast<std::uint32_t>(seen_by);
+      s.error_sd_m = r.F64();
+    }
+  }
   return s;
 }
 void Put(ByteWriter& w, const std::vector<line_map::LineSegment>& list) {

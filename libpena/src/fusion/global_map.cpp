@@ -100,6 +100,16 @@ std::vector<LineSegment> PlanPieces(const std::vector<MergeSource>& sources,
   return pieces;
 }
 
+// Copies a wall's support into the published segment (what the console draws confidence from):
+// the entities among who saw it, and its error sd on the map's 1 cm quanta.
+void CarrySupport(const WallSupport& support, LineSegment& wall) {
+  wall.seen_by_entities = static_cast<std::uint32_t>(
+      std::count_if(support.seen_by.begin(), support.seen_by.end(),
+                    [](const std::string& who) { return who != "plan"; }));
+  wall.error_sd_m = support.error_sd_m;
+  wall = line_map::QuantiseSegment(std::move(wall));
+}
+
 }  // namespace
 
 std::string ProvenanceKey(const std::string& source, std::int64_t segment_id) {
@@ -157,6 +167,7 @@ line_map::MapDelta GlobalMap::Rebuild(const std::vector<MergeSource>& sources) {
   const std::vector<LineSegment> plan_pieces = PlanPieces(sources, fresh, options_);
   fresh.insert(fresh.end(), plan_pieces.begin(), plan_pieces.end());
   judgement.support.resize(fresh.size(), WallSupport{{"plan"}, 0.0});
+  for (std::size_t i = 0; i < fresh.size(); ++i) CarrySupport(judgement.support[i], fresh[i]);
   const std::vector<LineSegment> old = published_.segments();
   const std::vector<std::int64_t> ids = MatchIds(fresh, old);
   line_map::MapDelta delta;

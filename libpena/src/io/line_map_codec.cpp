@@ -69,6 +69,13 @@ void ToWire(const LineSegment& segment, wire::LineSegmentMsg* out) {
   }
   out->set_rms_error_100um(static_cast<std::uint32_t>(rms));
   for (const std::string& entry : segment.provenance) out->add_provenance(entry);
+  const std::int64_t sd = ExactQuanta(segment.error_sd_m, line_map::kErrorSdQuantumM, segment,
+                                      "error_sd_m");
+  if (sd < 0 || segment.error_sd_m > line_map::kMaxErrorSdM) {
+    throw std::invalid_argument(Where(segment) + "error_sd_m must be in [0, 655.35] m");
+  }
+  out->set_seen_by_entities(segment.seen_by_entities);
+  out->set_error_sd_cm(static_cast<std::uint32_t>(sd));
 }
 
 double Coordinate(std::int64_t mm, const std::string& where, const char* field) {
@@ -108,6 +115,12 @@ LineSegment FromWire(const wire::LineSegmentMsg& msg, const std::string& where) 
   segment.observations = Count(msg.observations(), where, "observations");
   segment.rms_error_m = line_map::FromQuanta(msg.rms_error_100um(), kRmsQuantumM);
   segment.provenance.assign(msg.provenance().begin(), msg.provenance().end());
+  segment.seen_by_entities = msg.seen_by_entities();
+  if (msg.error_sd_cm() > line_map::ToQuanta(line_map::kMaxErrorSdM, line_map::kErrorSdQuantumM)) {
+    throw WireError(where + "error_sd_cm = " + std::to_string(msg.error_sd_cm()) +
+                    " is beyond 65535");
+  }
+  segment.error_sd_m = line_map::FromQuanta(msg.error_sd_cm(), line_map::kErrorSdQuantumM);
   return segment;
 }
 

@@ -1,5 +1,6 @@
 #include "pena/line_map/map_delta.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 
@@ -41,6 +42,9 @@ LineSegment QuantiseSegment(LineSegment segment) {
   // Counts are sums of whole cells and hits; rounding keeps them whole after weighted merges.
   segment.support_cells = std::round(segment.support_cells);
   segment.observations = std::round(segment.observations);
+  // NaN and negative estimates are no estimate (0).
+  const double sd_m = segment.error_sd_m > 0.0 ? std::min(segment.error_sd_m, kMaxErrorSdM) : 0.0;
+  segment.error_sd_m = Quantise(sd_m, kErrorSdQuantumM);
   return segment;
 }
 
@@ -49,7 +53,8 @@ bool SameSegment(const LineSegment& a, const LineSegment& b) {
          SameBits(a.segment.end_m, b.segment.end_m) &&
          SameBits(a.support_cells, b.support_cells) &&
          SameBits(a.observations, b.observations) && SameBits(a.rms_error_m, b.rms_error_m) &&
-         a.provenance == b.provenance;
+         a.provenance == b.provenance && a.seen_by_entities == b.seen_by_entities &&
+         SameBits(a.error_sd_m, b.error_sd_m);
 }
 
 bool SameMap(const MapSnapshot& a, const MapSnapshot& b) {

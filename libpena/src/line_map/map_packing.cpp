@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <vector>
@@ -59,18 +60,22 @@ struct FieldContexts {
   RiceContext rms{256};
   RiceContext next_id{256};
   RiceContext removed_step{4};
+  RiceContext seen_by{1};
+  RiceContext error_sd{16};
 };
 
 // Writes segments with ids and starts relative to the previous one, the end relative to its own
 // start (the longer axis as sign and magnitude, the shorter zig-zag), observations as the excess
 // over support_cells, and provenance as table indices, or one bit when the previous segment's
-// list repeats.
+// list repeats. A global wall's support (seen_by_entities, error sd in cm) follows only when the
+// message says so: one bit per message, so an entity's map pays nothing for it.
 class SegmentPacker {
  public:
   SegmentPacker(BitWriter& out, FieldContexts& contexts) : out_(out), c_(contexts) {}
   void Collect(const std::vector<LineSegment>& segments) {
     for (const LineSegment& segment : segments) {
       for (const std::string& source : segment.provenance) table_.emplace(source, table_.size());
+      with_support_ = with_support_ || segment.seen_by_entities != 0 || segment.error_sd_m != 0.0;
     }
   }
   void PutTable() {
@@ -78,6 +83,7 @@ class SegmentPacker {
     for (const auto& [text, index] : table_) ordered[index] = &text;
     out_.PutRice(c_.count, ordered.size());
     for (const std::string* text : ordered) out_.PutText(c_.text_length, *text);
+    out_.PutBit(with_support_);
   }
   void Put(const std::vector<LineSegment>& segments) {
     out_.PutRice(c_.count, segments.size());
@@ -114,6 +120,14 @@ class SegmentPacker {
     out_.PutRice(c_.support, static_cast<std::uint64_t>(support));
     out_.PutRice(c_.extra_observations, ZigZag(observations - support));
     out_.PutRice(c_.rms, static_cast<std::uint64_t>(rms));
+    if (with_support_) {
+      const std::int64_t sd = ExactQuanta(s.error_sd_m, kErrorSdQuantumM, "error sd");
+      if (sd < 0 || s.error_sd_m > kMaxErrorSdM) {
+        throw std::invalid_argument("map packing: error sd must be in [0, 655.35] m");
+      }
+      out_.PutRice(c_.seen_by, s.seen_by_entities);
+      out_.PutRice(c_.error_sd, static_cast<std::uint64_t>(sd));
+    }
     previous_id_ = s.id;
     previous_x_ = sx;
     previous_y_ = sy;
@@ -123,6 +137,7 @@ class SegmentPacker {
   BitWriter& out_;
   FieldContexts& c_;
   std::map<std::string, std::size_t> table_;
+  bool with_support_ = false;
   std::int64_t previous_id_ = 0;
   std::int64_t previous_x_ = 0;
   std::int64_t previous_y_ = 0;
@@ -138,6 +153,7 @@ class SegmentUnpacker {
     for (std::uint64_t i = 0; i < count && !in_.failed(); ++i) {
       table_.push_back(in_.GetText(c_.text_length));
     }
+    with_support_ = in_.GetBit();
   }
   std::vector<LineSegment> Get() {
     const std::uint64_t count = in_.GetCount(c_.count, kMinSegmentBits);
@@ -213,7 +229,19 @@ class SegmentUnpacker {
     if (observations < 0 && !in_.failed()) in_.Fail("observations < 0");
     s.observations = static_cast<double>(observations);
     s.rms_error_m = FromQuanta(Count(c_.rms, "rms error"), kRmsQuantumM);
+    if (with_support_) GetSupport(s);
     return s;
+  }
+  void GetSupport(LineSegment& s) {
+    const std::uint64_t seen_by = in_.GetRice(c_.seen_by);
+    const std::uint64_t sd = in_.GetRice(c_.error_sd);
+    const auto max_sd = static_cast<std::uint64_t>(ToQuanta(kMaxErrorSdM, kErrorSdQuantumM));
+    if (seen_by > std::numeric_limits<std::uint32_t>::max() || sd > max_sd) {
+      if (!in_.failed()) in_.Fail("wall support out of range");
+      return;
+    }
+    s.seen_by_entities = static_cast<std::uint32_t>(seen_by);
+    s.error_sd_m = FromQuanta(static_cast<std::int64_t>(sd), kErrorSdQuantumM);
   }
   std::int64_t Bounded(std::int64_t value, const char* what) {
     if (value > kMaxCoordinateQuanta || value < -kMaxCoordinateQuanta) {
@@ -226,6 +254,7 @@ class SegmentUnpacker {
   BitReader& in_;
   FieldContexts& c_;
   std::vector<std::string> table_;
+  bool with_support_ = false;
   std::int64_t previous_id_ = 0;
   std::int64_t previous_x_ = 0;
   std::int64_t previous_y_ = 0;

@@ -11,7 +11,7 @@ const PALETTE = ['#1565c0', '#c62828', '#2e7d32', '#6a1b9a', '#ef6c00', '#00838f
 const state = {
   connected: false,
   entities: new Map(),     // id -> {id, kind, state, lifecycle, pose, heard_ms, trail: [[t, x, y]]}
-  segments: new Map(),     // id -> [x0, y0, x1, y1, observed]
+  segments: new Map(),     // id -> [x0, y0, x1, y1, observed, seen_by_entities, error_sd_m, [mapped by]]
   mapVersion: 0,
   annotations: new Map(),  // id -> annotation
   corrections: [],
@@ -165,7 +165,11 @@ canvas.addEventListener('mousedown', (ev) => {
 });
 window.addEventListener('mouseup', () => { drag = null; });
 canvas.addEventListener('mousemove', (ev) => {
-  if (!drag) return;
+  if (!drag) {
+    const near = wallNear(ev.offsetX, ev.offsetY, 6);
+    canvas.title = near ? describeWall(near[0], near[1]) : '';
+    return;
+  }
   view.cx = drag.cx - (ev.offsetX - drag.x) / view.scale;
   view.cy = drag.cy + (ev.offsetY - drag.y) / view.scale;
   view.follow = '';
@@ -358,21 +362,62 @@ function draw() {
 const wallLayer = { canvas: document.createElement('canvas'), scale: 0, x0: 0, y0: 0, key: '' };
 let mapChanged = true;
 
+// How a wall is drawn by the support pena-fusion published for it: walls several entities saw
+// (or with no support figure) solid black, walls one entity alone saw faint, plan-only walls
+// dashed grey. The confidence the console shows is who saw a wall, not a threshold on its sd.
+const WALL_STYLES = [
+  { name: 'plan', colour: '#9e9e9e', opacity: 1, width: 1.6, dash: [6, 4], legend: 'plan only' },
+  { name: 'one', colour: '#111111', opacity: 0.35, width: 2.2, dash: [], legend: 'seen by one entity' },
+  { name: 'team', colour: '#111111', opacity: 1, width: 2.2, dash: [], legend: 'seen by 2+ entities' },
+];
+
+function wallStyle(s) {
+  if (!s[4]) return WALL_STYLES[0];
+  return s[5] === 1 ? WALL_STYLES[1] : WALL_STYLES[2];
+}
+
 function drawWalls(c, originX, originY) {
   c.lineCap = 'round';
-  for (const observed of [0, 1]) {
+  for (const style of WALL_STYLES) {
     c.beginPath();
     for (const s of state.segments.values()) {
-      if (s[4] !== observed) continue;
+      if (wallStyle(s) !== style) continue;
       c.moveTo((s[0] - originX) * view.scale, (originY - s[1]) * view.scale);
       c.lineTo((s[2] - originX) * view.scale, (originY - s[3]) * view.scale);
     }
-    c.strokeStyle = observed ? '#111111' : '#9e9e9e';
-    c.lineWidth = observed ? 2.2 : 1.6;
-    c.setLineDash(observed ? [] : [6, 4]);
+    c.globalAlpha = style.opacity;
+    c.strokeStyle = style.colour;
+    c.lineWidth = style.width;
+    c.setLineDash(style.dash);
     c.stroke();
   }
+  c.globalAlpha = 1;
   c.setLineDash([]);
+}
+
+// The wall nearest screen point (x, y) within `px` pixels: [id, wall], or null.
+function wallNear(x, y, px) {
+  const [wx, wy] = toWorld(x, y);
+  let best = null, bestD = px / view.scale;
+  for (const [id, s] of state.segments) {
+    const dx = s[2] - s[0], dy = s[3] - s[1], l2 = dx * dx + dy * dy;
+    const t = l2 > 0 ? Math.max(0, Math.min(1, ((wx - s[0]) * dx + (wy - s[1]) * dy) / l2)) : 0;
+    const d = Math.hypot(wx - s[0] - t * dx, wy - s[1] - t * dy);
+    if (d <= bestD) { best = [id, s]; bestD = d; }
+  }
+  return best;
+}
+
+// A wall's tooltip: who saw it and its estimated error, as pena-fusion published them.
+function describeWall(id, s) {
+  const length = Math.hypot(s[2] - s[0], s[3] - s[1]).toFixed(2);
+  if (!s[4]) return `wall ${id}, ${length} m: plan only`;
+  const n = s[5] || 0, names = s[7] || [];
+  if (n === 0) return `wall ${id}, ${length} m: observed by ${names.join(', ') || 'an entity'} (no support figure)`;
+  let who = `seen by ${n === 1 ? '1 entity' : n + ' entities'}`;
+  if (names.length) who += `: ${names.join(', ')}`;
+  if (names.length < n) who += ` and ${n - names.length} whose copy the fusion merged away`;
+  return `wall ${id}, ${length} m: ${who}; estimated error sd ${s[6].toFixed(2)} m`;
 }
 
 function drawMap() {
@@ -518,23 +563,26 @@ function drawScaleBar() {
 }
 
 function drawLegend() {
-  const rows = [['line', '#111111', [], 'observed wall'], ['line', '#9e9e9e', [6, 4], 'plan only'],
-                ['ellipse', '#1d2330', [3, 3], '95 % position'], ['dot', '#d81b60', [], 'victim'],
-                ['dot', '#f9a825', [], 'other mark']];
-  const x = canvas.width - 150, y0 = 12;
+  const rows = [...[2, 1, 0].map((i) => ['line', WALL_STYLES[i].colour, WALL_STYLES[i].dash,
+                                        WALL_STYLES[i].legend, WALL_STYLES[i].opacity]),
+                ['ellipse', '#1d2330', [3, 3], '95 % position', 1], ['dot', '#d81b60', [], 'victim', 1],
+                ['dot', '#f9a825', [], 'other mark', 1]];
+  const x = canvas.width - 160, y0 = 12;
   ctx.fillStyle = 'rgba(255, 255, 255, 0.85)';
-  ctx.fillRect(x - 8, y0 - 4, 150, rows.length * 17 + 6);
+  ctx.fillRect(x - 8, y0 - 4, 160, rows.length * 17 + 6);
   ctx.font = '12px system-ui, sans-serif';
-  rows.forEach(([shape, colour, dash, text], i) => {
+  rows.forEach(([shape, colour, dash, text, opacity], i) => {
     const y = y0 + 8 + i * 17;
     ctx.strokeStyle = colour;
     ctx.fillStyle = colour;
     ctx.setLineDash(dash);
     ctx.lineWidth = 2;
+    ctx.globalAlpha = opacity;
     ctx.beginPath();
     if (shape === 'line') { ctx.moveTo(x, y); ctx.lineTo(x + 24, y); ctx.stroke(); }
     if (shape === 'ellipse') { ctx.ellipse(x + 12, y, 11, 5, 0, 0, 2 * Math.PI); ctx.stroke(); }
     if (shape === 'dot') { ctx.arc(x + 12, y, 5, 0, 2 * Math.PI); ctx.fill(); }
+    ctx.globalAlpha = 1;
     ctx.setLineDash([]);
     ctx.fillStyle = '#1d2330';
     ctx.fillText(text, x + 32, y + 4);
@@ -552,16 +600,17 @@ function exportSvg() {
   const w = canvas.width, h = canvas.height, out = [];
   out.push(`<svg xmlns="http://www.w3.org/2000/svg" width="${w}" height="${h}" viewBox="0 0 ${w} ${h}" font-family="sans-serif">`);
   out.push(`<rect width="${w}" height="${h}" fill="#ffffff"/>`);
-  for (const observed of [0, 1]) {
+  for (const style of WALL_STYLES) {
     const d = [];
     for (const seg of state.segments.values()) {
-      if (seg[4] !== observed) continue;
+      if (wallStyle(seg) !== style) continue;
       const [ax, ay] = toScreen(seg[0], seg[1]), [bx, by] = toScreen(seg[2], seg[3]);
       d.push(`M${f1(ax)} ${f1(ay)}L${f1(bx)} ${f1(by)}`);
     }
     if (d.length) {
-      out.push(`<path d="${d.join('')}" fill="none" stroke-linecap="round" stroke="${observed ? '#111111' : '#9e9e9e'}" ` +
-               `stroke-width="${observed ? 2.2 : 1.6}"${observed ? '' : ' stroke-dasharray="6 4"'}/>`);
+      out.push(`<path class="walls-${style.name}" d="${d.join('')}" fill="none" stroke-linecap="round" stroke="${style.colour}" ` +
+               `stroke-width="${style.width}"${style.opacity < 1 ? ` stroke-opacity="${style.opacity}"` : ''}` +
+               `${style.dash.length ? ` stroke-dasharray="${style.dash.join(' ')}"` : ''}/>`);
     }
   }
   for (const e of state.entities.values()) {
@@ -745,7 +794,7 @@ window.addEventListener('resize', resize);
 
 window.penaConsole = { state, view, pick, send, toScreen, toWorld, startRotation, startTranslation, startMark, startArea,
                        startMove, retract, undo, lastInForce, pickPoint, closeArea, fit, exportSvg, exportPng,
-                       ellipseOf, redraw: () => { draw(); dirty = false; }, mapChanged: () => { mapChanged = true; } };
+                       ellipseOf, wallStyle, wallNear, describeWall, redraw: () => { draw(); dirty = false; }, mapChanged: () => { mapChanged = true; } };
 resize();
 connect();
 requestAnimationFrame(frame);

@@ -13,8 +13,8 @@
 namespace pena::fusion {
 
 // The encoding version written; every version from 1 up to it is read (2 added the outline of an
-// annotation, 3 an entity's operator-moved walls).
-inline constexpr std::uint8_t kFusionCodecVersion = 3;
+// annotation, 3 an entity's operator-moved walls, 4 a global wall's support).
+inline constexpr std::uint8_t kFusionCodecVersion = 4;
 
 // Serialises one input.
 std::string EncodeInput(const FusionInput& input);

@@ -15,6 +15,11 @@ namespace pena::line_map {
 inline constexpr double kCoordinateQuantumM = 0.001;
 // Fit error resolution in metres (0.1 mm).
 inline constexpr double kRmsQuantumM = 0.0001;
+// Resolution of a global wall's estimated error sd in metres (1 cm: enough to draw confidence,
+// coarse enough that the estimate's drift between rebuilds rarely re-sends a wall).
+inline constexpr double kErrorSdQuantumM = 0.01;
+// Largest estimated error sd a quantised wall carries, metres (fits 16 bits of centimetres).
+inline constexpr double kMaxErrorSdM = 655.35;
 // Largest coordinate magnitude in metres a quantised map holds (fits sint32 millimetres).
 inline constexpr double kMaxCoordinateM = 2.0e6;
 
@@ -41,7 +46,8 @@ std::int64_t ToQuanta(double value_m, double quantum_m);
 double FromQuanta(std::int64_t quanta, double quantum_m);
 // `value_m` rounded to the nearest multiple of `quantum_m` (the same double on every machine).
 double Quantise(double value_m, double quantum_m);
-// The segment with endpoints, fit error and counts quantised (see the file comment).
+// The segment with endpoints, fit error, counts and error sd quantised (see the file comment;
+// the error sd is clamped to kMaxErrorSdM).
 LineSegment QuantiseSegment(LineSegment segment);
 // True if every field, provenance included, is identical (doubles compared bit for bit).
 bool SameSegment(const LineSegment& a, const LineSegment& b);

@@ -3,7 +3,8 @@
 // "Map deltas"): the gateway sends it, `pena map` reports its size. Endpoints in whole
 // millimetres, each segment's id and start delta-coded against the previous segment, its end
 // against its own start, all as adaptive Rice codes on a bit stream; provenance strings once per
-// message in a table, and one bit when a segment's list repeats the previous one's. Exact for
+// message in a table, and one bit when a segment's list repeats the previous one's; a global
+// wall's support (entities that saw it, error sd in cm) only in a message that has some. Exact for
 // what a LineMap produces, so the far side's map equals the near side's.
 
 #include <optional>
