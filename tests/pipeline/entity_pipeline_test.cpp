@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "pena/pipeline/start_pose.hpp"
 #include "pena/sim/scenario.hpp"
@@ -94,6 +95,47 @@ TEST(EntityPipeline, PublishesAPosePerScanAndFollowsTheTruth) {
   const geometry::Pose2& truth = robot.truth.back().world_from_body;
   const geometry::Pose2& estimate = run.steps.back().world_from_body;
   EXPECT_LT(std::hypot(truth.x_m - estimate.x_m, truth.y_m - estimate.y_m), 0.3);
+}
+
+// The SLAM stage is KeyframeSlam fed with every step's odometry pose, inside the pipeline (as
+// `pena map` runs it): the same corrected trajectory as feeding it by hand.
+TEST(EntityPipeline, TheSlamStageIsKeyframeSlamOverTheOdometryPoses) {
+  const sim::EntityRecording& robot = Robot();
+  EntityPipelineOptions with_slam;
+  with_slam.slam.enabled = true;
+  EntityPipeline staged = MakePipeline(robot, with_slam);
+  ASSERT_NE(staged.slam(), nullptr);
+  Replay(staged, robot);
+  staged.slam()->Finish();
+  const geometry::Trajectory corrected = staged.slam()->Trajectory();
+
+  EntityPipeline plain = MakePipeline(robot);
+  EXPECT_EQ(plain.slam(), nullptr);
+  slam::KeyframeSlam by_hand(with_slam.slam.graph, robot.kind);
+  for (const ScanStep& step : Replay(plain, robot).steps) {
+    by_hand.Add(step.scan, step.odometry.world_from_body);
+  }
+  by_hand.Finish();
+  const geometry::Trajectory expected = by_hand.Trajectory();
+  ASSERT_EQ(corrected.size(), robot.scans);
+  ASSERT_EQ(corrected.size(), expected.size());
+  for (std::size_t i = 0; i < corrected.size(); ++i) {
+    EXPECT_EQ(corrected[i].stamp_s, expected[i].stamp_s);
+    EXPECT_EQ(corrected[i].pose.x_m, expected[i].pose.x_m);
+    EXPECT_EQ(corrected[i].pose.theta_rad, expected[i].pose.theta_rad);
+  }
+  EXPECT_GT(staged.slam()->counts().keyframes, 10);
+  EXPECT_EQ(staged.slam()->counts().loop_closures, by_hand.counts().loop_closures);
+
+  EntityPipelineOptions bad = with_slam;
+  bad.slam.graph.keyframe_distance_m = -1.0;
+  try {
+    MakePipeline(robot, bad);
+    ADD_FAILURE() << "a bad SLAM option was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("slam.keyframe_distance_m"), std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(EntityPipeline, DeltasInOrderRebuildTheLocalMap) {

@@ -125,14 +125,18 @@ std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run
   const double stamp_s = read_ahead.empty() ? 0.0 : sensors::StampOf(read_ahead.front());
   const io::LogDescription& description = source->description();
   const sensors::EntityKind kind = description.kind.value_or(sensors::EntityKind::kRobot);
-  pipeline::EntityPipeline chain(ChainOptionsOf(args), kind,
+  pipeline::EntityPipelineOptions options = ChainOptionsOf(args);
+  options.slam.enabled = true;
+  options.slam.graph = SlamOptionsOf(args);
+  pipeline::EntityPipeline chain(options, kind,
                                  description.entity_id.empty() ? "entity" : description.entity_id,
                                  StartPoseOf(read_ahead, *source).world_from_body, stamp_s);
-  slam::KeyframeSlam slam(SlamOptionsOf(args), kind);
+  slam::KeyframeSlam& slam = *chain.slam();
   ProgressLine progress(!args.quiet);
   auto feed = [&](const sensors::SensorRecord& record) {
     chain.Push(record);
-    while (const auto step = chain.Next()) slam.Add(step->scan, step->odometry.world_from_body);
+    while (chain.Next()) {
+    }
   };
   for (const sensors::SensorRecord& record : read_ahead) feed(record);
   while (const auto record = source->Next()) {
@@ -145,7 +149,8 @@ std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run
     }
   }
   chain.EndOfInput();  // the records the stride spreading still holds
-  while (const auto step = chain.Next()) slam.Add(step->scan, step->odometry.world_from_body);
+  while (chain.Next()) {
+  }
   slam.Finish();
   geometry::Trajectory trajectory = slam.Trajectory();
   std::filesystem::create_directories(args.out);

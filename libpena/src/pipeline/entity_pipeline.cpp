@@ -63,6 +63,7 @@ void ValidateEntityPipelineOptions(const EntityPipelineOptions& options) {
   }
   line_map::ValidateLineExtractionOptions(options.extraction);
   ValidatePlanLocalisationOptions(options.plan_localisation);
+  if (options.slam.enabled) slam::ValidateSlamOptions(options.slam.graph);
   if (!BentScanModeOf(ToString(options.bent_scans.mode))) {
     throw std::invalid_argument("pipeline.bent_scans.mode must be off, level or drop, got " +
                                 std::to_string(static_cast<int>(options.bent_scans.mode)));
@@ -128,6 +129,7 @@ EntityPipeline::EntityPipeline(const EntityPipelineOptions& options, sensors::En
   if (kind == sensors::EntityKind::kHuman && walking.stride_interpolation.enabled) {
     spread_.emplace(dead_reckoning::SpreadOptionsOf(walking));
   }
+  if (options_.slam.enabled) slam_ = std::make_unique<slam::KeyframeSlam>(options_.slam.graph, kind);
 }
 
 EntityPipeline::~EntityPipeline() = default;
@@ -196,6 +198,8 @@ std::optional<ScanStep> EntityPipeline::Step(const sensors::SensorRecord& record
   step.covariance = RotateCovariance(estimate->covariance, map_from_odom_);
   step.odometry = std::move(*estimate);
   step.scan = scan;
+  // Beyond the paper (its future work): loop closures over the odometry's keyframes.
+  if (slam_) slam_->Add(scan, step.odometry.world_from_body);
   last_world_from_body_ = step.world_from_body;
   // Section 3: the scan goes into the local grid at the corrected pose (levelled or left out if
   // the first pass showed it bent); lines come out of it. A grid just reset by a plan correction

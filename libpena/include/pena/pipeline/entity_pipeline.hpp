@@ -32,6 +32,7 @@
 #include "pena/pipeline/plan_localisation_options.hpp"
 #include "pena/sensors/entity.hpp"
 #include "pena/sensors/record.hpp"
+#include "pena/slam/keyframe_slam.hpp"
 
 namespace pena::pipeline {
 
@@ -47,6 +48,13 @@ enum class BentScanMode {
 struct BentScanStageOptions {
   BentScanMode mode = BentScanMode::kOff;
   grid::BentScanOptions judge;  // which scans are bent, and how they are levelled
+};
+
+// The keyframe SLAM stage (docs/slam.md): every scan's odometry pose goes to a KeyframeSlam,
+// which corrects them with loop closures; the corrected trajectory is read at the end (slam()).
+struct SlamStageOptions {
+  bool enabled = false;
+  slam::SlamOptions graph;
 };
 
 // Options of the whole per-entity chain; validated by EntityPipeline's constructor.
@@ -77,6 +85,8 @@ struct EntityPipelineOptions {
   PlanLocalisationOptions plan_localisation;
   // Bent scans levelled or left out of the map, judged against a first pass's grid; off.
   BentScanStageOptions bent_scans;
+  // Keyframe SLAM over the odometry's poses (`pena map`); off.
+  SlamStageOptions slam;
 };
 
 // Throws std::invalid_argument naming the field and its unit (nested options included).
@@ -191,6 +201,10 @@ class EntityPipeline {
   void SetBentScanReference(grid::OccupancyGrid first_pass);
   bool has_bent_scan_reference() const { return bent_reference_ != nullptr; }
 
+  // The SLAM stage (options.slam.enabled), nullptr when off: its counts and closures as it goes;
+  // Finish it at the end of input before reading its corrected Trajectory.
+  slam::KeyframeSlam* slam() { return slam_.get(); }
+
   // Localises against an a priori plan (map frame, metres) at every reference change from now on.
   // Throws std::invalid_argument for an empty plan or bad options.plan_localisation, and
   // std::logic_error with plan_localisation.global_start once a record was pushed.
@@ -283,6 +297,7 @@ class EntityPipeline {
   std::unique_ptr<PlanStage> plan_;  // set by SetPlan
   grid::BentScanLeveller leveller_;   // options.bent_scans.judge
   std::unique_ptr<grid::OccupancyGrid> bent_reference_;  // set by SetBentScanReference
+  std::unique_ptr<slam::KeyframeSlam> slam_;  // the SLAM stage, when enabled
   PipelineCounts counts_;
 };
 
