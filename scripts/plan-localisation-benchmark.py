@@ -413,8 +413,10 @@ def main():
           f"(work {work})")
     for name, rows in tables.items():
         print_building(name, rows)
+    if frames:
+        print()
     for run_name, frame in frames.items():
-        print(f"\nframe check {run_name}: corrected_from_map fit " +
+        print(f"frame check {run_name}: corrected_from_map fit " +
               ("-" if frame is None else f"x {frame[0]:.3f} m, y {frame[1]:.3f} m, theta {frame[2]:.2f} deg"))
     print_acceptance(tables)
     print(f"\nwall time {time.time() - started_s:.0f} s ({opts.jobs} jobs)")
