@@ -23,8 +23,17 @@ Logs nobody here has seen are run the same way: --corrected LOG (a log with corr
 perturbed like the radish ones), or --log RAW --truth CORRECTED (a raw log of the same run
 localised as it is on the map from CORRECTED and scored against its poses where the scan stamps
 agree; the known start is the corrected pose at the raw log's first scan). --raw adds the raw
-Freiburg logs (intel, aces, mit-csail) on their radish maps, started at 0,0,0 and scored on their
-relations (mean relation error).
+Freiburg logs (intel, aces, mit-csail) on their radish maps, localised as they are (start mode at
+0,0,0, where the radish-corrected frame puts the Freiburg log's start) and scored twice: on their
+relations (rows "freiburg MODE relations": relation error mean, 95th percentile, max) and against
+the corrected poses (rows "freiburg MODE"). The two logs' clocks differ, so the corrected scans
+are paired with the Freiburg scans by identical ranges (scripts/radish-frame-fit.py); the map
+frame is the corrected frame, so the error needs no fit (the rigid fit of the trajectory onto
+the corrected poses is printed as a check that the frames agree).
+
+The last lines check the issue's acceptance on every perturbed row: mean under 0.10 m, 95th
+percentile under 0.30 m, and every lost interval found within 20 m of travel (one the log ended
+in counts if it lasted longer). The total wall time is printed.
 
   scripts/plan-localisation-benchmark.py [--build DIR] [--work DIR] [--buildings intel,aces,...]
       [--seeds N] [--modes start,global] [--jobs N] [--raw] [--corrected LOG]...
@@ -38,14 +47,26 @@ import json
 import math
 import os
 import shutil
+import importlib.util
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 RADISH = ["intel", "aces", "csail", "seattle", "orebro"]
 RAW = {"intel": "intel", "aces": "aces", "mit-csail": "csail"}  # Freiburg log -> radish map
 WRONG_M = 0.5  # an error above this counts as "wrong" time
+# The issue's acceptance on the perturbed runs.
+ACCEPT_MEAN_M, ACCEPT_P95_M, ACCEPT_LOST_M = 0.10, 0.30, 20.0
+
+
+def radish_frame_fit():
+    """scripts/radish-frame-fit.py as a module (scan pairing and the rigid fit)."""
+    spec = importlib.util.spec_from_file_location("radish_frame_fit", ROOT / "scripts" / "radish-frame-fit.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def datasets_dir():
@@ -210,18 +231,57 @@ def raw_run(pena, name, log, lines, truth, modes, work, extra):
     return results
 
 
-def freiburg_run(pena, name, log, relations, lines, work, extra):
-    out = work / name / "freiburg"
-    localise(pena, log, lines, out, "start", "0,0,0", extra)
-    res = subprocess.run([str(pena), "eval", "--json", "--trajectory", out / "trajectory.tum", "--relations",
-                          relations], capture_output=True, text=True)
+def freiburg_truth(corrected, log, path):
+    """The corrected poses at the Freiburg log's stamps (scans paired by identical ranges), in the
+    corrected frame, written to `path` as TUM; returns them."""
+    if not (RESUME and path.exists()):
+        fit = radish_frame_fit()
+        stamp_of = {}
+        for key, stamp, _ in fit.scans(str(log)):
+            stamp_of.setdefault(key, stamp)
+        paired = sorted((stamp_of[key], pose) for key, _, pose in fit.scans(str(corrected)) if key in stamp_of)
+        if len(paired) < 2:
+            raise RuntimeError(f"{corrected}: only {len(paired)} scans pair with {log}; no truth")
+        with open(path, "w") as out:
+            for stamp, (x, y, heading) in paired:
+                out.write(f"{stamp:.6f} {x:.6f} {y:.6f} 0 0 0 {math.sin(heading / 2):.9f} {math.cos(heading / 2):.9f}\n")
+    return read_tum(path)
+
+
+def frame_check(estimate_path, truth):
+    """The rigid fit corrected_from_map of the trajectory onto the corrected poses (x m, y m,
+    theta deg): near zero when the map frame is the corrected frame."""
+    pairs = match(read_tum(estimate_path), truth)
+    if len(pairs) < 3:
+        return None
+    th, tx, ty = radish_frame_fit().fit_rigid([(t[1:], e[1:]) for e, t in pairs])
+    return tx, ty, math.degrees(th)
+
+
+def relation_error(pena, trajectory, relations):
+    res = subprocess.run([str(pena), "eval", "--json", "--trajectory", trajectory, "--relations", relations],
+                         capture_output=True, text=True)
     if res.returncode != 0:
-        raise RuntimeError(f"pena eval failed on {out}: {res.stderr}")
+        raise RuntimeError(f"pena eval failed on {trajectory}: {res.stderr}")
     r = json.loads(res.stdout)["relations"]
-    summary = json.loads((out / "summary.json").read_text())
     return {"mean_m": r["translational_error_m"]["mean"], "p95_m": r["translational_error_spread_m"]["p95"],
-            "max_m": r["translational_error_spread_m"]["max"], "scans": summary["scans"],
-            "wall_s": summary["processing_wall_s"]}
+            "max_m": r["translational_error_spread_m"]["max"], "used": r["used"], "skipped": r["skipped"]}
+
+
+def freiburg_run(pena, name, log, relations, corrected, lines, modes, work, extra):
+    """A raw Freiburg log on its radish map: relation error and error against the corrected poses."""
+    out = work / name / "freiburg"
+    out.mkdir(parents=True, exist_ok=True)
+    truth = freiburg_truth(corrected, log, out / "truth.tum")
+    results = {}
+    for mode in modes:
+        localise(pena, log, lines, out / mode, mode, "0,0,0", extra)
+        summary = json.loads((out / mode / "summary.json").read_text())
+        relation = relation_error(pena, out / mode / "trajectory.tum", relations)
+        relation.update({"scans": summary["scans"], "wall_s": summary["processing_wall_s"]})
+        results[mode] = {"relations": relation, "corrected": score(out / mode, truth, truth[-1][0]),
+                         "frame": frame_check(out / mode / "trajectory.tum", truth)}
+    return results
 
 
 def fmt(value, digits=3):
@@ -239,13 +299,14 @@ def summarise(mode, runs):
             elif longest is None or b - a > longest[0]:
                 longest = (b - a, walked)
     anchors = [r["anchor_s"] for r in runs if r["anchor_s"] is not None]
+    walked = [w for r in runs for _, _, w in r["lost"]]
     return {"mode": mode, "runs": len(runs), "mean_m": sum(errors) / len(errors) if errors else None,
             "p95_m": percentile(errors, 0.95), "max_m": max(errors) if errors else None,
             "matched": sum(r["matched"] for r in runs), "scans": sum(r["scans"] for r in runs),
             "lost_s": sum(r["lost_s"] for r in runs) / len(runs),
             "outside_s": sum(r["outside_s"] for r in runs) / len(runs), "intervals": sum(len(r["lost"]) for r in runs),
             "reacquire_s": longest[0] if longest else None, "reacquire_m": longest[1] if longest else None,
-            "never": never, "wrong_s": sum(r["wrong_s"] for r in runs) / len(runs),
+            "never": never, "lost_max_m": max(walked) if walked else None, "wrong_s": sum(r["wrong_s"] for r in runs) / len(runs),
             "anchor_s": max(anchors) if anchors else None, "unanchored": sum(not r["anchored"] for r in runs),
             "scans_per_s": sum(r["scans"] for r in runs) / max(1e-9, sum(r["wall_s"] for r in runs))}
 
@@ -272,7 +333,7 @@ def main():
     parser.add_argument("--pena", help="the pena binary to run (default: BUILD/tools/pena/pena)")
     parser.add_argument("--work", default="/tmp/pena-plan-localisation")
     parser.add_argument("--buildings", default=",".join(RADISH), help="radish-corrected logs to run")
-    parser.add_argument("--seeds", type=int, default=3, help="perturbation seeds per building")
+    parser.add_argument("--seeds", type=int, default=10, help="perturbation seeds per building")
     parser.add_argument("--first-seed", type=int, default=1)
     parser.add_argument("--modes", default="start,global", help="start (known start), global (--global)")
     parser.add_argument("--jobs", type=int, default=2)
@@ -314,7 +375,8 @@ def main():
             sys.exit(f"plan-localisation-benchmark: {path} does not exist")
     seeds = range(opts.first_seed, opts.first_seed + opts.seeds)
 
-    tables = {}
+    started_s = time.time()
+    tables, frames = {}, {}
     with concurrent.futures.ThreadPoolExecutor(max_workers=opts.jobs) as pool:
         maps = {n: pool.submit(build_map, pena, n, c, work) for n, c in corrected}
         maps.update({n: pool.submit(build_map, pena, n, t, work) for n, _, t in raw})
@@ -326,13 +388,13 @@ def main():
         freiburg_jobs = {}
         if opts.raw:
             for log, building in RAW.items():
+                corrected_log = data / "radish-corrected" / f"{building}-corrected.log.gz"
                 if building not in maps:
-                    maps[building] = pool.submit(build_map, pena, building,
-                                                 data / "radish-corrected" / f"{building}-corrected.log.gz", work)
+                    maps[building] = pool.submit(build_map, pena, building, corrected_log, work)
                 freiburg_jobs[log] = pool.submit(
-                    lambda log=log, b=building: freiburg_run(pena, log, data / "freiburg" / f"{log}.clf.gz",
-                                                             data / "freiburg" / f"{log}.relations",
-                                                             maps[b].result()[0], work, extra))
+                    lambda log=log, b=building, c=corrected_log: freiburg_run(
+                        pena, log, data / "freiburg" / f"{log}.clf.gz", data / "freiburg" / f"{log}.relations", c,
+                        maps[b].result()[0], modes, work, extra))
         for name, runs in jobs.items():
             results = [j.result() for j in runs]
             tables[name] = [summarise(f"perturbed {m}", [r[m] for r in results]) for m in modes]
@@ -340,15 +402,51 @@ def main():
             result = job.result()
             tables[name] = [summarise(f"raw {m}", [result[m]]) for m in modes]
         for log, job in freiburg_jobs.items():
-            row = job.result()
-            row["mode"] = "freiburg relations"
-            tables.setdefault(RAW[log], []).append(row)
+            result = job.result()
+            for m in modes:
+                row = result[m]["relations"]
+                row["mode"] = f"freiburg {m} relations"
+                tables.setdefault(RAW[log], []).append(row)
+                tables[RAW[log]].append(summarise(f"freiburg {m}", [result[m]["corrected"]]))
+                frames[f"{log} {m}"] = result[m]["frame"]
     print(f"plan localisation benchmark: pena localise {' '.join(extra)}; seeds {seeds.start}-{seeds.stop - 1} "
           f"(work {work})")
     for name, rows in tables.items():
         print_building(name, rows)
+    if frames:
+        print()
+    for run_name, frame in frames.items():
+        print(f"frame check {run_name}: corrected_from_map fit " +
+              ("-" if frame is None else f"x {frame[0]:.3f} m, y {frame[1]:.3f} m, theta {frame[2]:.2f} deg"))
+    print_acceptance(tables)
+    print(f"\nwall time {time.time() - started_s:.0f} s ({opts.jobs} jobs)")
     if opts.json:
         Path(opts.json).write_text(json.dumps(tables, indent=1))
+
+
+def print_acceptance(tables):
+    """The issue's bar on every perturbed row."""
+    print(f"\nacceptance (perturbed: mean < {ACCEPT_MEAN_M} m, p95 < {ACCEPT_P95_M} m, every lost interval "
+          f"found within {ACCEPT_LOST_M:.0f} m of travel)")
+    failed = 0
+    for name, rows in tables.items():
+        for r in rows:
+            if not r["mode"].startswith("perturbed"):
+                continue
+            reasons = []
+            if r["mean_m"] is None or r["mean_m"] >= ACCEPT_MEAN_M:
+                reasons.append(f"mean {fmt(r['mean_m'])} m")
+            if r["p95_m"] is None or r["p95_m"] >= ACCEPT_P95_M:
+                reasons.append(f"p95 {fmt(r['p95_m'])} m")
+            if r["lost_max_m"] is not None and r["lost_max_m"] > ACCEPT_LOST_M:
+                reasons.append(f"a lost interval of {r['lost_max_m']:.1f} m")
+            if r["unanchored"]:
+                reasons.append(f"{r['unanchored']} runs never anchored")
+            open_note = f"; {r['never']} interval(s) open at the log's end" if r["never"] else ""
+            print(f"  {name:<10} {r['mode']:<18} {'FAIL: ' + ', '.join(reasons) if reasons else 'pass'}"
+                  f" (longest lost {fmt(r['lost_max_m'], 1)} m{open_note})")
+            failed += bool(reasons)
+    print(f"  {'every perturbed row passes' if not failed else f'{failed} perturbed row(s) fail'}")
 
 
 if __name__ == "__main__":
