@@ -146,8 +146,9 @@ struct KeyframeSlam::Impl {
         (!pending && index % options.loop_wide_check_every != 0)) {
       return false;
     }
-    const int candidate = LoopCandidate(
-        index, options.loop_wide_window_m + options.keyframe_distance_m, options.loop_wide_min_path_m);
+    const int candidate =
+        LoopCandidate(index, options.loop_wide_window_m + options.keyframe_distance_m,
+                      options.loop_wide_min_path_m);
     if (candidate < 0) return false;
     ++counts.wide_checks;
     // The window doubles from twice the narrow one up to loop_wide_window_m, and the first whose
@@ -155,7 +156,7 @@ struct KeyframeSlam::Impl {
     // the graph's prediction is taken, and a farther alias is found only where nothing nearer
     // fits.
     std::optional<Found> found;
-    for (double half_m = 2.0 * options.loop_window_m; !found;
+    for (double half_m = std::min(2.0 * options.loop_window_m, options.loop_wide_window_m); !found;
          half_m = std::min(2.0 * half_m, options.loop_wide_window_m)) {
       found = MatchCandidate(index, candidate, half_m, options.loop_window_max_rad);
       if (half_m >= options.loop_wide_window_m) break;
