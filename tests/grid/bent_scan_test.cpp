@@ -12,51 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "grid_test_util.hpp"
+#include "tilted_corridor.hpp"
 
 namespace pena::grid {
 namespace {
 
-constexpr double kLaserHeightM = 1.2;
-constexpr double kCorridorHalfWidthM = 1.0;  // walls at y = -1 and y = +1
-constexpr double kCorridorEndM = 20.0;       // end wall at x = 20
-constexpr int kBeams = 361;                  // -90 .. +90 deg, 0.5 deg apart
-constexpr double kIncrementRad = std::numbers::pi / 360.0;
-
-double BeamAngle(int i) { return -std::numbers::pi / 2 + i * kIncrementRad; }
-
-// Horizontal distance from (x, 0) along world direction `angle_rad` to the corridor's walls.
-double WallDistanceM(double x_m, double angle_rad) {
-  const double c = std::cos(angle_rad);
-  const double s = std::sin(angle_rad);
-  double d = std::numeric_limits<double>::infinity();
-  if (std::abs(s) > 1e-9) d = std::min(d, kCorridorHalfWidthM / std::abs(s));
-  if (c > 1e-9) d = std::min(d, (kCorridorEndM - x_m) / c);
-  return d;
-}
-
-// A scan at (x, 0) heading +x from a laser tilted by `tilt_rad` about the axis perpendicular to
-// `normal_rad` (0: pitched straight ahead): beam a falls by sin(tilt) cos(a - normal). Returns the
-// slant range to the nearer of the floor and the (vertical) walls, as a laser reports it.
-sensors::LaserScan TiltedScan(double x_m, double tilt_rad, double normal_rad = 0.0) {
-  std::vector<float> ranges(kBeams);
-  for (int i = 0; i < kBeams; ++i) {
-    const double a = BeamAngle(i);
-    const double sin_down = std::sin(tilt_rad) * std::cos(a - normal_rad);
-    const double cos_elevation = std::sqrt(1.0 - sin_down * sin_down);
-    double range = WallDistanceM(x_m, a) / cos_elevation;
-    if (sin_down > 1e-9) range = std::min(range, kLaserHeightM / sin_down);
-    ranges[static_cast<std::size_t>(i)] = static_cast<float>(range);
-  }
-  return testing::MakeScan(ranges, -std::numbers::pi / 2, kIncrementRad);
-}
-
-// The grid of a level walk down the corridor from x = 0 to x = 6.
-OccupancyGrid LevelWalk() {
-  OccupancyGrid grid;
-  for (double x = 0.0; x <= 6.0; x += 0.25) grid.Insert(TiltedScan(x, 0.0), {x, 0.0, 0.0});
-  return grid;
-}
+using namespace testing::corridor;
 
 TEST(BentScan, FindsTheFloorLineOfAPitchedScanAndNotOfALevelOne) {
   const OccupancyGrid walk = LevelWalk();

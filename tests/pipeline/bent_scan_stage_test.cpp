@@ -13,50 +13,14 @@
 #include "pena/pipeline/entity_pipeline.hpp"
 #include "pena/sim/scenario.hpp"
 #include "pena/sim/simulator.hpp"
+#include "tilted_corridor.hpp"
 
 namespace pena::pipeline {
 namespace {
 
-constexpr double kLaserHeightM = 1.2;
-constexpr double kCorridorHalfWidthM = 1.0;  // walls at y = -1 and y = +1
-constexpr double kCorridorEndM = 20.0;       // end wall at x = 20
-constexpr int kBeams = 361;                  // -90 .. +90 deg, 0.5 deg apart
-constexpr double kIncrementRad = std::numbers::pi / 360.0;
+using namespace testing::corridor;
+
 constexpr double kPitchRad = 15.0 * std::numbers::pi / 180.0;  // floor met 4.64 m ahead
-
-double BeamAngle(int i) { return -std::numbers::pi / 2 + i * kIncrementRad; }
-
-// Horizontal distance from (x, 0) along world direction `angle_rad` to the corridor's walls.
-double WallDistanceM(double x_m, double angle_rad) {
-  const double c = std::cos(angle_rad);
-  const double s = std::sin(angle_rad);
-  double d = std::numeric_limits<double>::infinity();
-  if (std::abs(s) > 1e-9) d = std::min(d, kCorridorHalfWidthM / std::abs(s));
-  if (c > 1e-9) d = std::min(d, (kCorridorEndM - x_m) / c);
-  return d;
-}
-
-// A scan at (x, 0) heading +x from a laser pitched down by `pitch_rad`: the slant range to the
-// nearer of the floor and the (vertical) walls, as the laser reports it.
-sensors::LaserScan PitchedScan(double x_m, double pitch_rad) {
-  sensors::LaserScan scan;
-  scan.stamp_s = x_m;
-  scan.geometry = {-std::numbers::pi / 2, kIncrementRad, 30.0};
-  for (int i = 0; i < kBeams; ++i) {
-    const double sin_down = std::sin(pitch_rad) * std::cos(BeamAngle(i));
-    double range = WallDistanceM(x_m, BeamAngle(i)) / std::sqrt(1.0 - sin_down * sin_down);
-    if (sin_down > 1e-9) range = std::min(range, kLaserHeightM / sin_down);
-    scan.ranges_m.push_back(static_cast<float>(range));
-  }
-  return scan;
-}
-
-// The first pass: the grid of a level walk down the corridor from x = 0 to x = 6.
-grid::OccupancyGrid LevelWalk() {
-  grid::OccupancyGrid grid;
-  for (double x = 0.0; x <= 6.0; x += 0.25) grid.Insert(PitchedScan(x, 0.0), {x, 0.0, 0.0});
-  return grid;
-}
 
 EntityPipeline SecondPass(BentScanMode mode) {
   EntityPipelineOptions options;
@@ -69,7 +33,7 @@ EntityPipeline SecondPass(BentScanMode mode) {
 TEST(BentScanStage, LevelsAScanWithFloorHitsBeforeTheMap) {
   EntityPipeline pipeline = SecondPass(BentScanMode::kLevel);
   const geometry::Pose2 pose{3.0, 0.0, 0.0};
-  const sensors::LaserScan bent = PitchedScan(3.0, kPitchRad);
+  const sensors::LaserScan bent = TiltedScan(3.0, kPitchRad);
   const Placement placed = pipeline.Place(bent, pose);
   EXPECT_TRUE(placed.bent);
   ASSERT_TRUE(placed.scan);
@@ -96,7 +60,7 @@ TEST(BentScanStage, LevelsAScanWithFloorHitsBeforeTheMap) {
   EXPECT_EQ(pipeline.counts().bent_scans, 1);
 
   // A level scan of the same walk reaches the map as measured.
-  const sensors::LaserScan level = PitchedScan(3.5, 0.0);
+  const sensors::LaserScan level = TiltedScan(3.5, 0.0);
   const Placement kept = pipeline.Place(level, {3.5, 0.0, 0.0});
   EXPECT_FALSE(kept.bent);
   ASSERT_TRUE(kept.scan);
@@ -106,7 +70,7 @@ TEST(BentScanStage, LevelsAScanWithFloorHitsBeforeTheMap) {
 
 TEST(BentScanStage, DropLeavesABentScanOutAndWithoutAFirstPassNothingIsBent) {
   EntityPipeline dropping = SecondPass(BentScanMode::kDrop);
-  const Placement dropped = dropping.Place(PitchedScan(3.0, kPitchRad), {3.0, 0.0, 0.0});
+  const Placement dropped = dropping.Place(TiltedScan(3.0, kPitchRad), {3.0, 0.0, 0.0});
   EXPECT_TRUE(dropped.bent);
   EXPECT_FALSE(dropped.scan);
   EXPECT_EQ(dropping.counts().bent_scans, 1);
@@ -115,7 +79,7 @@ TEST(BentScanStage, DropLeavesABentScanOutAndWithoutAFirstPassNothingIsBent) {
   EntityPipelineOptions options;
   options.bent_scans.mode = BentScanMode::kLevel;
   EntityPipeline first(options, sensors::EntityKind::kHuman, "ff1", {}, 0.0);
-  const sensors::LaserScan bent = PitchedScan(3.0, kPitchRad);
+  const sensors::LaserScan bent = TiltedScan(3.0, kPitchRad);
   const Placement placed = first.Place(bent, {3.0, 0.0, 0.0});
   EXPECT_FALSE(placed.bent);
   ASSERT_TRUE(placed.scan);
