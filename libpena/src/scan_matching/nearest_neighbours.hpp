@@ -11,7 +11,9 @@
 
 namespace pena::scan_matching::internal {
 
-// A k-d tree over a point set it owns.
+// A k-d tree over a point set it owns. Normals are estimated on first use of a point: a
+// refinement pairs a few hundred of a local map's thousands of points, and the map is rebuilt at
+// every keyframe. So, like the matcher that owns it, not thread-safe.
 class NearestNeighbours {
  public:
   explicit NearestNeighbours(Points2 points);
@@ -20,10 +22,13 @@ class NearestNeighbours {
   const Eigen::Vector2d& point(std::uint32_t index) const { return cloud_->points[index]; }
   // Unit normal of the surface at a point (PCA of its neighbours); zero where the neighbourhood
   // is not line-like (a corner, an isolated point).
-  const Eigen::Vector2d& normal(std::uint32_t index) const { return normals_[index]; }
+  const Eigen::Vector2d& normal(std::uint32_t index) const {
+    if (!normal_known_[index]) EstimateNormal(index);
+    return normals_[index];
+  }
 
  private:
-  void EstimateNormals();
+  void EstimateNormal(std::uint32_t index) const;
 
   struct Cloud {
     Points2 points;
@@ -37,7 +42,8 @@ class NearestNeighbours {
   // On the heap: the tree keeps a reference to it, which must survive moves of this object.
   std::unique_ptr<Cloud> cloud_;
   std::unique_ptr<Tree> tree_;
-  std::vector<Eigen::Vector2d> normals_;
+  mutable std::vector<Eigen::Vector2d> normals_;
+  mutable std::vector<bool> normal_known_;
 };
 
 }  // namespace pena::scan_matching::internal

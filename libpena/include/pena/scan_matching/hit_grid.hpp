@@ -33,6 +33,10 @@ class HitGrid {
     return cells_[static_cast<std::size_t>(cell_y) * static_cast<std::size_t>(width_) +
                   static_cast<std::size_t>(cell_x)];
   }
+  // Row cell_y's weights, width() of them (0 <= cell_y < height()).
+  const std::uint8_t* Row(int cell_y) const {
+    return cells_.data() + static_cast<std::size_t>(cell_y) * static_cast<std::size_t>(width_);
+  }
   int width() const { return width_; }
   int height() const { return height_; }
   double resolution_m() const { return resolution_m_; }
