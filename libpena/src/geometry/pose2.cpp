@@ -32,11 +32,14 @@ Pose2 Between(const Pose2& world_from_a, const Pose2& world_from_b) {
 }
 
 Eigen::Vector2d TransformPoint(const Pose2& a_from_b, const Eigen::Vector2d& point_b) {
-  const double c = std::cos(a_from_b.theta_rad);
-  const double s = std::sin(a_from_b.theta_rad);
-  return {a_from_b.x_m + c * point_b.x() - s * point_b.y(),
-          a_from_b.y_m + s * point_b.x() + c * point_b.y()};
+  return PointTransform(a_from_b)(point_b);
 }
+
+PointTransform::PointTransform(const Pose2& a_from_b)
+    : c_(std::cos(a_from_b.theta_rad)),
+      s_(std::sin(a_from_b.theta_rad)),
+      x_m_(a_from_b.x_m),
+      y_m_(a_from_b.y_m) {}
 
 Pose2 Interpolate(const Pose2& from, const Pose2& to, double fraction) {
   const double dtheta = NormalizeAngle(to.theta_rad - from.theta_rad);

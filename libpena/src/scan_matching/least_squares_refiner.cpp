@@ -20,8 +20,9 @@ NormalEquations Linearise(const NearestNeighbours& neighbours, double threshold_
   NormalEquations equations;
   const double c = std::cos(pose.theta_rad);
   const double s = std::sin(pose.theta_rad);
+  const geometry::PointTransform transform(pose);
   for (const auto& point : scan) {
-    const Eigen::Vector2d moved = geometry::TransformPoint(pose, point);
+    const Eigen::Vector2d moved = transform(point);
     std::uint32_t index = 0;
     double distance_sq = 0.0;
     if (!neighbours.Find(moved, index, distance_sq) || distance_sq > threshold_m * threshold_m) continue;
@@ -41,8 +42,9 @@ NormalEquations Linearise(const NearestNeighbours& neighbours, double threshold_
 
 int CountHits(const HitGrid& hits, const Points2& scan, const geometry::Pose2& reference_from_scan) {
   int count = 0;
+  const geometry::PointTransform transform(reference_from_scan);
   for (const auto& point : scan) {
-    const Eigen::Vector2i cell = hits.CellOf(geometry::TransformPoint(reference_from_scan, point));
+    const Eigen::Vector2i cell = hits.CellOf(transform(point));
     count += hits.At(cell.x(), cell.y()) > 0 ? 1 : 0;
   }
   return count;
@@ -50,8 +52,9 @@ int CountHits(const HitGrid& hits, const Points2& scan, const geometry::Pose2& r
 
 long WeightAt(const HitGrid& hits, const Points2& scan, const geometry::Pose2& reference_from_scan) {
   long weight = 0;
+  const geometry::PointTransform transform(reference_from_scan);
   for (const auto& point : scan) {
-    const Eigen::Vector2i cell = hits.CellOf(geometry::TransformPoint(reference_from_scan, point));
+    const Eigen::Vector2i cell = hits.CellOf(transform(point));
     weight += hits.At(cell.x(), cell.y());
   }
   return weight;

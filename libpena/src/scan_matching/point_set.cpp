@@ -58,7 +58,8 @@ Points2 ScanToPointsAtMidSweep(const sensors::LaserScan& scan, double min_range_
 Points2 TransformPoints(const geometry::Pose2& a_from_b, const Points2& points_b) {
   Points2 points_a;
   points_a.reserve(points_b.size());
-  for (const auto& point : points_b) points_a.push_back(geometry::TransformPoint(a_from_b, point));
+  const geometry::PointTransform transform(a_from_b);
+  for (const auto& point : points_b) points_a.push_back(transform(point));
   return points_a;
 }
 

@@ -53,7 +53,8 @@ std::vector<Eigen::Vector2i> DiscretizeScan(const HitGrid& hits, const Points2& 
       reference_from_prior.theta_rad + (angle - grid.center_angle) * grid.step_theta_rad};
   std::vector<Eigen::Vector2i> cells;
   cells.reserve(scan.size());
-  for (const auto& point : scan) cells.push_back(hits.CellOf(geometry::TransformPoint(lowest, point)));
+  const geometry::PointTransform transform(lowest);
+  for (const auto& point : scan) cells.push_back(hits.CellOf(transform(point)));
   return cells;
 }
 

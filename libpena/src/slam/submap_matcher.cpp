@@ -51,8 +51,9 @@ void SubmapMatcher::Build(const std::vector<Keyframe>& keyframes,
   for (int m = first; m <= last; ++m) {
     const geometry::Pose2 centre_from_m =
         geometry::Compose(centre_from_world, poses[static_cast<std::size_t>(m)]);
+    const geometry::PointTransform transform(centre_from_m);
     for (const Eigen::Vector2d& point : keyframes[static_cast<std::size_t>(m)].points) {
-      const Eigen::Vector2d p = geometry::TransformPoint(centre_from_m, point);
+      const Eigen::Vector2d p = transform(point);
       if (p.norm() <= options_.submap_radius_m) points.push_back(p);
     }
   }
