@@ -53,6 +53,34 @@ TEST(CorrelationScanMatcher, RefinementBeatsTheGridResolution) {
   EXPECT_NEAR(result.reference_from_scan.theta_rad, 0.3 * kDeg, 0.05 * kDeg);
 }
 
+TEST(CorrelationScanMatcher, RefineLaterGivesWhatTheSearchWouldHaveRefined) {
+  const Pair pair = MakePair({1.5, 2.5, 0.0}, {1.53, 2.47, 0.3 * kDeg}, 0.0, 2);
+  const CorrelationScanMatcher matcher({}, pair.reference);
+  for (const bool wide : {false, true}) {
+    SearchWindow window;
+    if (wide) window = {0.8, 0.6, 20.0 * kDeg, 0.06, 0.6 * kDeg};
+    auto search = [&](Polish polish) {
+      return wide ? matcher.MatchBranchAndBound(pair.scan, {0.1, 0.0, 0.05}, window, polish)
+                  : matcher.MatchExhaustive(pair.scan, {0.0, 0.0, 0.0}, window, polish);
+    };
+    const MatchResult refined = search(Polish::kRefine);
+    MatchResult later = search(Polish::kGridPoseOnly);
+    EXPECT_DOUBLE_EQ(later.reference_from_scan.x_m, later.grid_pose.x_m);
+    EXPECT_TRUE(later.information.isZero());
+    matcher.Refine(pair.scan, later);
+    EXPECT_DOUBLE_EQ(later.reference_from_scan.x_m, refined.reference_from_scan.x_m);
+    EXPECT_DOUBLE_EQ(later.reference_from_scan.y_m, refined.reference_from_scan.y_m);
+    EXPECT_DOUBLE_EQ(later.reference_from_scan.theta_rad, refined.reference_from_scan.theta_rad);
+    EXPECT_EQ(later.information, refined.information);
+    // The refinement moved it, so the comparison above is not of two grid poses.
+    EXPECT_GT(std::abs(refined.reference_from_scan.x_m - refined.grid_pose.x_m) +
+                  std::abs(refined.reference_from_scan.y_m - refined.grid_pose.y_m) +
+                  std::abs(refined.reference_from_scan.theta_rad - refined.grid_pose.theta_rad),
+              1e-4)
+        << (wide ? "wide" : "paper") << " window";
+  }
+}
+
 // Branch and bound must return exactly the exhaustive search's grid pose and score. Returns the
 // exhaustive search's grid pose.
 geometry::Pose2 ExpectSameAsExhaustive(const SearchWindow& window, const geometry::Pose2& prior,

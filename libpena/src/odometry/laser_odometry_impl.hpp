@@ -130,6 +130,7 @@ struct LaserOdometry::Impl {
   void Match(const scan_matching::Points2& points, OdometryEstimate& out);
   // pace_check_*: a weakly constrained match that fell behind the walk keeps the prior along it.
   void CheckPace(const Eigen::Matrix3d& information, const geometry::Pose2& prior);
+  // The window regrowth around one prior; the result is the best grid pose, not yet refined.
   scan_matching::MatchResult Search(const scan_matching::Points2& points,
                                     const geometry::Pose2& prior, OdometryEstimate& out);
   // local_map_place_fill_below_score: `first` (searched from `window_before`) against the

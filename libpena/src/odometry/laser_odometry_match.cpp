@@ -33,9 +33,11 @@ scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Poin
     const scan_matching::SearchWindow searched = window.Current();
     last_searched = searched;
     out.wide_search = out.wide_search || window.IsWide();
+    // Unrefined: Match refines only the search it keeps (a grown window or another prior may win).
+    constexpr auto kPolish = scan_matching::Polish::kGridPoseOnly;
     scan_matching::MatchResult result =
-        window.IsBase() ? matcher->MatchExhaustive(points, prior, searched)
-                        : matcher->MatchBranchAndBound(points, prior, searched);
+        window.IsBase() ? matcher->MatchExhaustive(points, prior, searched, kPolish)
+                        : matcher->MatchBranchAndBound(points, prior, searched, kPolish);
     // A low score or a best pose on the window's edge (the optimum may lie outside): search
     // again at once with a grown window, up to the wide one, before giving up on this scan.
     const bool retry = result.score < options.min_score ||
@@ -80,6 +82,7 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
     TakeKeyframe(points, out);
     return;
   }
+  matcher->Refine(points, result);  // the matcher that found it (SearchFilled may have swapped)
   estimate = result.reference_from_scan;
   match_information = result.information;
   match_reference_covariance = ReferenceCovariance(estimate);  // before a keyframe changes it

@@ -79,7 +79,8 @@ CorrelationScanMatcher& CorrelationScanMatcher::operator=(CorrelationScanMatcher
 
 MatchResult CorrelationScanMatcher::MatchExhaustive(const Points2& scan,
                                                     const geometry::Pose2& reference_from_prior,
-                                                    const SearchWindow& window) const {
+                                                    const SearchWindow& window,
+                                                    Polish polish) const {
   ValidateWindow(window, options_);
   const internal::WindowGrid grid = internal::MakeWindowGrid(window, options_);
   internal::Candidate best;
@@ -99,12 +100,13 @@ MatchResult CorrelationScanMatcher::MatchExhaustive(const Points2& scan,
     }
   }
   return internal::Finish(impl_->neighbours, impl_->hits, options_, scan, grid, reference_from_prior, best,
-                          scored);
+                          scored, polish);
 }
 
 MatchResult CorrelationScanMatcher::MatchBranchAndBound(const Points2& scan,
                                                         const geometry::Pose2& reference_from_prior,
-                                                        const SearchWindow& window) const {
+                                                        const SearchWindow& window,
+                                                        Polish polish) const {
   ValidateWindow(window, options_);
   const internal::WindowGrid grid = internal::MakeWindowGrid(window, options_);
   long scored = 0;
@@ -112,7 +114,11 @@ MatchResult CorrelationScanMatcher::MatchBranchAndBound(const Points2& scan,
       internal::BranchAndBound(impl_->hits, impl_->MaxGridsFor(grid), scan, reference_from_prior,
                                grid, scored);
   return internal::Finish(impl_->neighbours, impl_->hits, options_, scan, grid, reference_from_prior, best,
-                          scored);
+                          scored, polish);
+}
+
+void CorrelationScanMatcher::Refine(const Points2& scan, MatchResult& result) const {
+  internal::RefineResult(impl_->neighbours, impl_->hits, options_, scan, result);
 }
 
 double CorrelationScanMatcher::Score(const Points2& scan,

@@ -83,7 +83,8 @@ Refinement RefineLeastSquares(const NearestNeighbours& neighbours,
 
 MatchResult Finish(const NearestNeighbours& neighbours, const HitGrid& hits,
                    const CorrelationMatcherOptions& options, const Points2& scan, const WindowGrid& grid,
-                   const geometry::Pose2& reference_from_prior, const Candidate& best, long scored) {
+                   const geometry::Pose2& reference_from_prior, const Candidate& best, long scored,
+                   scan_matching::Polish polish) {
   MatchResult result;
   result.points = static_cast<int>(scan.size());
   result.candidates_scored = scored;
@@ -93,16 +94,22 @@ MatchResult Finish(const NearestNeighbours& neighbours, const HitGrid& hits,
   result.score = scan.empty() ? 0.0 : static_cast<double>(result.hits) / static_cast<double>(scan.size());
   result.converged = result.hits > 0;
   result.reference_from_scan = result.grid_pose;
-  if (result.converged) {
-    const Refinement refinement = RefineLeastSquares(neighbours, options, scan, result.grid_pose);
-    // Least squares polishes the grid pose; it is kept unless it lowers the score (a false pairing
-    // pulled it away), so its reach is not tied to the grid step.
-    if (WeightAt(hits, scan, refinement.reference_from_scan) >= result.weight) {
-      result.reference_from_scan = refinement.reference_from_scan;
-    }
-    result.information = refinement.information;
-  }
+  if (polish == scan_matching::Polish::kRefine) RefineResult(neighbours, hits, options, scan, result);
   return result;
+}
+
+void RefineResult(const NearestNeighbours& neighbours, const HitGrid& hits,
+                  const CorrelationMatcherOptions& options, const Points2& scan, MatchResult& result) {
+  result.reference_from_scan = result.grid_pose;
+  result.information = Eigen::Matrix3d::Zero();
+  if (!result.converged) return;
+  const Refinement refinement = RefineLeastSquares(neighbours, options, scan, result.grid_pose);
+  // Least squares polishes the grid pose; it is kept unless it lowers the score (a false pairing
+  // pulled it away), so its reach is not tied to the grid step.
+  if (WeightAt(hits, scan, refinement.reference_from_scan) >= result.weight) {
+    result.reference_from_scan = refinement.reference_from_scan;
+  }
+  result.information = refinement.information;
 }
 
 }  // namespace pena::scan_matching::internal

@@ -26,9 +26,14 @@ int CountHits(const HitGrid& hits, const Points2& scan, const geometry::Pose2& r
 // The searched score (sum of cell weights) at a pose.
 long WeightAt(const HitGrid& hits, const Points2& scan, const geometry::Pose2& reference_from_scan);
 
-// Builds the MatchResult of a search's best candidate, refinement included.
+// Builds the MatchResult of a search's best candidate; refined unless polish says grid pose only.
 MatchResult Finish(const NearestNeighbours& neighbours, const HitGrid& hits,
                    const CorrelationMatcherOptions& options, const Points2& scan, const WindowGrid& grid,
-                   const geometry::Pose2& reference_from_prior, const Candidate& best, long scored);
+                   const geometry::Pose2& reference_from_prior, const Candidate& best, long scored,
+                   scan_matching::Polish polish);
+
+// The least-squares polish of a result at its grid pose (reference_from_scan, information).
+void RefineResult(const NearestNeighbours& neighbours, const HitGrid& hits,
+                  const CorrelationMatcherOptions& options, const Points2& scan, MatchResult& result);
 
 }  // namespace pena::scan_matching::internal

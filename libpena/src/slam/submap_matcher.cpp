@@ -87,7 +87,8 @@ std::optional<LoopMatch> SubmapMatcher::Match(const std::vector<Keyframe>& keyfr
   scan_matching::MatchResult result;
   for (;;) {
     window.size_theta_rad = 2.0 * std::ceil(half_rad / kStepThetaRad) * kStepThetaRad;
-    result = matcher_->MatchBranchAndBound(scan, centre_from_prior, window);
+    result = matcher_->MatchBranchAndBound(scan, centre_from_prior, window,
+                                           scan_matching::Polish::kGridPoseOnly);
     if (!result.converged || result.score < options_.loop_min_score) return std::nullopt;
     const Edge edge = WindowEdge(result.grid_pose, centre_from_prior, window);
     if (edge == Edge::kNone) break;
@@ -100,6 +101,7 @@ std::optional<LoopMatch> SubmapMatcher::Match(const std::vector<Keyframe>& keyfr
     if (edge == Edge::kPosition || half_rad >= options_.loop_window_max_rad) return std::nullopt;
     half_rad = std::min(2.0 * half_rad, options_.loop_window_max_rad);
   }
+  matcher_->Refine(scan, result);  // the search kept: refined once
   if (!WellConditioned(result.information, options_.degenerate_eigen_ratio)) return std::nullopt;
   return LoopMatch{result.reference_from_scan, result.score, result.information};
 }

@@ -55,6 +55,11 @@ struct MatchResult {
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
 };
 
+// Whether a search ends with the least-squares refinement of its best grid pose, or leaves
+// reference_from_scan at the grid pose and information zero for a later Refine: a caller that
+// compares several searches (grown windows, other priors) refines only the one it keeps.
+enum class Polish { kRefine, kGridPoseOnly };
+
 // Matches scans against one reference point set (a reference scan or a small local map).
 // One instance per thread.
 class CorrelationScanMatcher {
@@ -68,12 +73,16 @@ class CorrelationScanMatcher {
 
   // The paper's algorithm: every pose of the window is scored.
   MatchResult MatchExhaustive(const Points2& scan, const geometry::Pose2& reference_from_prior,
-                              const SearchWindow& window) const;
+                              const SearchWindow& window, Polish polish = Polish::kRefine) const;
 
   // Same best grid pose as MatchExhaustive (same score, same tie-break), found by branch and
   // bound over max-grids built on first use per step and cached (so not thread-safe).
   MatchResult MatchBranchAndBound(const Points2& scan, const geometry::Pose2& reference_from_prior,
-                                  const SearchWindow& window) const;
+                                  const SearchWindow& window, Polish polish = Polish::kRefine) const;
+
+  // The refinement of a result of this matcher found with Polish::kGridPoseOnly: the same
+  // reference_from_scan and information as a search with Polish::kRefine would have given.
+  void Refine(const Points2& scan, MatchResult& result) const;
 
   // Eq. 2 for one pose: fraction of scan points within the threshold of a reference point.
   double Score(const Points2& scan, const geometry::Pose2& reference_from_scan) const;
