@@ -108,10 +108,12 @@ void FusionService::AfterPlacement(const std::string& entity_id,
   const fusion::PlacementResult& placement = *output.placement;
   const double best = placement.hypotheses.empty() ? 0.0 : placement.hypotheses.front().score;
   if (!placement.placed) {
-    spdlog::info("{}: placement pending ({} m of walls, {} hypotheses, best score {:.2f}, margin "
-                 "{:.1f} m): {}",
-                 entity_id, placement.local_length_m, placement.hypotheses.size(), best,
-                 placement.margin_m, placement.reason);
+    const geometry::Pose2 at =
+        placement.hypotheses.empty() ? geometry::Pose2{} : placement.hypotheses.front().map_from_entity;
+    spdlog::info("{}: placement pending ({} m of walls, {} hypotheses, best score {:.2f} at "
+                 "({:.3f} m, {:.3f} m, {:.4f} rad), margin {:.1f} m): {}",
+                 entity_id, placement.local_length_m, placement.hypotheses.size(), best, at.x_m,
+                 at.y_m, at.theta_rad, placement.margin_m, placement.reason);
     return;
   }
   const geometry::Pose2& pose = placement.map_from_entity;

@@ -1,6 +1,7 @@
 // Placement of an entity with an unknown start: several hypotheses, accepted only by a margin.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -71,6 +72,52 @@ TEST(Placement, AcceptsOnceTheGrownMapWinsByTheMargin) {
   EXPECT_NEAR(later.map_from_entity.x_m, kMapFromEntity.x_m, 0.05);
   EXPECT_NEAR(later.map_from_entity.y_m, kMapFromEntity.y_m, 0.05);
   EXPECT_NEAR(later.map_from_entity.theta_rad, kMapFromEntity.theta_rad, 0.01);
+}
+
+// The entity saw two places: near its start an L of two 6 m walls, farther on a staircase of six
+// 3-3.5 m walls. The global map holds the L where it truly is (kRight) but not the staircase
+// there; it holds a staircase of the same shape elsewhere, turned by 100 deg (kWrong): the wrong
+// pose explains 20 of the 32 m (62 %, 8 m more than the right pose), other walls than the right
+// pose does. Were the two equally good, that margin's sd wall by wall would be 11.8 m.
+const geometry::Pose2 kRight{12.0, -3.0, 0.4};
+const geometry::Pose2 kWrong{-30.0, 25.0, 0.4 + 1.7453292519943295};
+
+std::vector<line_map::LineSegment> StartL() { return {Wall(0, 0, 6, 0), Wall(0, 0, 0, 6)}; }
+
+std::vector<line_map::LineSegment> Staircase() {
+  return {Wall(20, 0, 23.5, 0),   Wall(23.5, 0, 23.5, 3), Wall(23.5, 3, 20.5, 3),
+          Wall(20.5, 3, 20.5, 6.5), Wall(20.5, 6.5, 24, 6.5), Wall(24, 6.5, 24, 10)};
+}
+
+TEST(Placement, RefusesAWrongPoseThatExplainsOtherWallsThanTheRightOne) {
+  std::vector<line_map::LineSegment> local = StartL();
+  for (const line_map::LineSegment& wall : Staircase()) local.push_back(wall);
+  for (std::size_t i = 0; i < local.size(); ++i) local[i].id = static_cast<std::int64_t>(i + 1);
+  std::vector<line_map::LineSegment> global = Moved(kRight, StartL());
+  for (const line_map::LineSegment& wall : Moved(kWrong, Staircase())) global.push_back(wall);
+  for (std::size_t i = 0; i < global.size(); ++i) global[i].id = static_cast<std::int64_t>(i + 1);
+
+  const PlacementResult result = PlaceLocalMap(local, global, {});
+  ASSERT_GE(result.hypotheses.size(), 2u);
+  const geometry::Pose2& best = result.hypotheses.front().map_from_entity;
+  EXPECT_NEAR(best.x_m, kWrong.x_m, 0.05);  // the wrong pose explains the most wall ...
+  EXPECT_NEAR(best.y_m, kWrong.y_m, 0.05);
+  EXPECT_GE(result.hypotheses.front().score, 0.6);
+  EXPECT_GE(result.margin_m, 1.5);
+  EXPECT_FALSE(result.placed);  // ... but not by more than chance would
+  EXPECT_NE(result.reason.find("chance alone"), std::string::npos) << result.reason;
+  const bool right_kept = std::any_of(result.hypotheses.begin(), result.hypotheses.end(),
+                                      [](const PlacementHypothesis& h) {
+    return std::hypot(h.map_from_entity.x_m - kRight.x_m, h.map_from_entity.y_m - kRight.y_m) < 0.1;
+  });
+  EXPECT_TRUE(right_kept);
+
+  // Score and margin in metres alone would have placed it there.
+  PlacementOptions metres_only;
+  metres_only.min_margin_sd = 0.0;
+  const PlacementResult wrong = PlaceLocalMap(local, global, {}, metres_only);
+  ASSERT_TRUE(wrong.placed) << wrong.reason;
+  EXPECT_NEAR(wrong.map_from_entity.x_m, kWrong.x_m, 0.05);
 }
 
 TEST(Placement, WaitsForEnoughWalls) {

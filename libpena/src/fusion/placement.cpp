@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "fusion_checks.hpp"
@@ -137,8 +138,50 @@ geometry::Pose2 Polish(const geometry::Pose2& map_from_entity, const Samples& lo
   return match.converged ? match.reference_from_scan : map_from_entity;
 }
 
+// Whether the winner's margin over another hypothesis could be chance: were the two equally
+// good, what would their margin's sd be? Each local wall is one piece of evidence (its points move
+// together), its vote the difference d_i of what the two explain of it; for two equally good
+// poses each vote's sign is a coin toss, so the margin sum d_i has sd sqrt(sum d_i^2) (a sign
+// test weighted by the votes). A corridor alias that differs from the winner by one dead end has a
+// small sd; a pose that explains other walls than the winner's (a building turned by 90 deg, whose
+// corridors fit as well) a large one. Returns the other hypothesis the winner beats by the
+// smallest number of sds, and that margin and sd.
+struct Contest {
+  double margin_m = 0.0;
+  double sd_m = 0.0;
+};
+
+Contest ClosestContest(const std::vector<PlacementHypothesis>& hypotheses, const Samples& samples,
+                       std::size_t walls, const DistanceField& field, double score_distance_m) {
+  const std::vector<double> best = field.ExplainedPerWall(
+      samples, walls, hypotheses.front().map_from_entity, score_distance_m);
+  Contest closest{hypotheses.size() > 1 ? hypotheses.front().explained_m - hypotheses[1].explained_m
+                                        : hypotheses.front().explained_m,
+                  0.0};
+  double closest_ratio = std::numeric_limits<double>::infinity();
+  for (std::size_t h = 1; h < hypotheses.size(); ++h) {
+    const std::vector<double> other =
+        field.ExplainedPerWall(samples, walls, hypotheses[h].map_from_entity, score_distance_m);
+    Contest contest;
+    double sum_sq_m2 = 0.0;
+    for (std::size_t i = 0; i < walls; ++i) {
+      contest.margin_m += best[i] - other[i];
+      sum_sq_m2 += (best[i] - other[i]) * (best[i] - other[i]);
+    }
+    contest.sd_m = std::sqrt(sum_sq_m2);
+    const double ratio = contest.sd_m > 0.0 ? contest.margin_m / contest.sd_m
+                                            : std::numeric_limits<double>::infinity();
+    if (ratio < closest_ratio) {
+      closest_ratio = ratio;
+      closest = contest;
+    }
+  }
+  return closest;
+}
+
 // Sets placed, margin and reason from the ranked hypotheses.
-void Decide(PlacementResult& result, const PlacementOptions& options) {
+void Decide(PlacementResult& result, const Samples& samples, std::size_t walls,
+            const DistanceField& field, const PlacementOptions& options) {
   if (result.hypotheses.empty()) {
     result.reason = "no corner of the local map matches one of the global map";
     return;
@@ -146,12 +189,18 @@ void Decide(PlacementResult& result, const PlacementOptions& options) {
   const PlacementHypothesis& best = result.hypotheses.front();
   const double runner_up_m = result.hypotheses.size() > 1 ? result.hypotheses[1].explained_m : 0.0;
   result.margin_m = best.explained_m - runner_up_m;
+  const Contest contest =
+      ClosestContest(result.hypotheses, samples, walls, field, options.score_distance_m);
   if (best.score < options.min_score) {
     result.reason = "the best hypothesis explains only " + Percent(best.score) + " of the walls";
   } else if (result.margin_m < options.min_margin_m) {
     result.reason = "aliased: " + std::to_string(result.hypotheses.size()) +
                     " hypotheses, the best explains only " + Metres(result.margin_m) +
                     " of wall more than the next";
+  } else if (contest.margin_m <= options.min_margin_sd * contest.sd_m) {
+    result.reason = "aliased: the best explains " + Metres(contest.margin_m) +
+                    " of wall more than a pose that explains other walls, chance alone " +
+                    Metres(contest.sd_m) + " (sd, wall by wall)";
   } else {
     result.placed = true;
     result.map_from_entity = best.map_from_entity;
@@ -193,6 +242,8 @@ void ValidatePlacementOptions(const PlacementOptions& o) {
           o.min_score);
   Require(std::isfinite(o.min_margin_m) && o.min_margin_m >= 0.0,
           "placement.min_margin_m must be >= 0 (metres)", o.min_margin_m);
+  Require(std::isfinite(o.min_margin_sd) && o.min_margin_sd >= 0.0,
+          "placement.min_margin_sd must be >= 0 (standard deviations)", o.min_margin_sd);
 }
 
 PlacementResult PlaceLocalMap(const std::vector<line_map::LineSegment>& local,
@@ -211,7 +262,7 @@ PlacementResult PlaceLocalMap(const std::vector<line_map::LineSegment>& local,
   }
   const DistanceField field(global, options.grid_resolution_m, 2.0 * options.score_distance_m);
   result.hypotheses = Rank(CornerPoses(local, global, options), previous, samples, field, options);
-  Decide(result, options);
+  Decide(result, samples, local.size(), field, options);
   if (result.placed) result.map_from_entity = Polish(result.map_from_entity, samples, global, options);
   return result;
 }

@@ -53,7 +53,8 @@ void AddCorners(const geometry::Segment2& a, const geometry::Segment2& b,
 
 Samples SampleWalls(const std::vector<line_map::LineSegment>& walls, double spacing_m) {
   Samples samples;
-  for (const line_map::LineSegment& wall : walls) {
+  for (std::size_t index = 0; index < walls.size(); ++index) {
+    const line_map::LineSegment& wall = walls[index];
     const double length = geometry::Length(wall.segment);
     if (length <= 0.0) continue;
     const int pieces = std::max(1, static_cast<int>(std::ceil(length / spacing_m)));
@@ -62,6 +63,7 @@ Samples SampleWalls(const std::vector<line_map::LineSegment>& walls, double spac
       samples.points_m.push_back(wall.segment.start_m +
                                  fraction * (wall.segment.end_m - wall.segment.start_m));
       samples.weight_m.push_back(length / pieces);
+      samples.wall.push_back(index);
     }
     samples.length_m += length;
   }
@@ -96,24 +98,42 @@ DistanceField::DistanceField(const std::vector<line_map::LineSegment>& walls,
   cv::distanceTransform(free_cells, distance_cells_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
 }
 
+double DistanceField::Explained(const Eigen::Vector2d& map_point_m, double distance_m) const {
+  const Eigen::Vector2d p = map_point_m - origin_m_;
+  const int col = static_cast<int>(std::floor(p.x() / resolution_m_));
+  const int row = static_cast<int>(std::floor(p.y() / resolution_m_));
+  if (col < 0 || row < 0 || col >= distance_cells_.cols || row >= distance_cells_.rows) return 0.0;
+  const double d = distance_cells_.at<float>(row, col) * resolution_m_ / distance_m;
+  return d < 1.0 ? 1.0 - d * d : 0.0;
+}
+
 double DistanceField::Score(const Samples& samples, const geometry::Pose2& map_from_entity,
                             double distance_m, std::size_t stride) const {
   const double c = std::cos(map_from_entity.theta_rad);
   const double s = std::sin(map_from_entity.theta_rad);
+  const Eigen::Vector2d t(map_from_entity.x_m, map_from_entity.y_m);
   double explained = 0.0;
   double total = 0.0;
   for (std::size_t i = 0; i < samples.points_m.size(); i += stride) {
     const Eigen::Vector2d& p = samples.points_m[i];
     total += samples.weight_m[i];
-    const double x = c * p.x() - s * p.y() + map_from_entity.x_m - origin_m_.x();
-    const double y = s * p.x() + c * p.y() + map_from_entity.y_m - origin_m_.y();
-    const int col = static_cast<int>(std::floor(x / resolution_m_));
-    const int row = static_cast<int>(std::floor(y / resolution_m_));
-    if (col < 0 || row < 0 || col >= distance_cells_.cols || row >= distance_cells_.rows) continue;
-    const double d = distance_cells_.at<float>(row, col) * resolution_m_ / distance_m;
-    if (d < 1.0) explained += samples.weight_m[i] * (1.0 - d * d);
+    explained += samples.weight_m[i] *
+                 Explained(Eigen::Vector2d(c * p.x() - s * p.y(), s * p.x() + c * p.y()) + t,
+                           distance_m);
   }
   return total > 0.0 ? explained / total : 0.0;
+}
+
+std::vector<double> DistanceField::ExplainedPerWall(const Samples& samples, std::size_t walls,
+                                                    const geometry::Pose2& map_from_entity,
+                                                    double distance_m) const {
+  std::vector<double> explained_m(walls, 0.0);
+  for (std::size_t i = 0; i < samples.points_m.size(); ++i) {
+    explained_m[samples.wall[i]] +=
+        samples.weight_m[i] *
+        Explained(geometry::TransformPoint(map_from_entity, samples.points_m[i]), distance_m);
+  }
+  return explained_m;
 }
 
 std::vector<Corner> FindCorners(const std::vector<line_map::LineSegment>& walls, int max_segments,

@@ -16,6 +16,7 @@ namespace pena::fusion::detail {
 struct Samples {
   std::vector<Eigen::Vector2d> points_m;
   std::vector<double> weight_m;
+  std::vector<std::size_t> wall;  // index of the wall (in the sampled vector) of each point
   double length_m = 0.0;  // total wall length
 };
 
@@ -33,8 +34,15 @@ class DistanceField {
   // every stride-th sample only. Samples off the grid count 0.
   double Score(const Samples& samples, const geometry::Pose2& map_from_entity, double distance_m,
                std::size_t stride) const;
+  // Explained length (metres, graded as Score) of each sampled wall, indexed like the walls.
+  std::vector<double> ExplainedPerWall(const Samples& samples, std::size_t walls,
+                                       const geometry::Pose2& map_from_entity,
+                                       double distance_m) const;
 
  private:
+  // 1 - (d / distance_m)^2 for a point d from the nearest wall, 0 beyond or off the grid.
+  double Explained(const Eigen::Vector2d& map_point_m, double distance_m) const;
+
   cv::Mat distance_cells_;  // CV_32F, distance to the nearest wall in cells
   Eigen::Vector2d origin_m_;
   double resolution_m_;

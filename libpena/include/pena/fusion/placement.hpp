@@ -3,7 +3,8 @@
 // to the global map (map frame). Hypotheses come from corner correspondences (two walls meeting at
 // a corner fix a rigid transform), each is refined and scored by how much of the local walls the
 // global map explains; several distinct hypotheses are kept and one is accepted only when it
-// explains clearly more wall than any other, because corridors alias (docs/fusion.md).
+// explains more wall than any other by more than chance would, because corridors and symmetric
+// buildings alias (docs/fusion.md).
 
 #include <string>
 #include <vector>
@@ -29,6 +30,8 @@ struct PlacementOptions {
   double min_local_length_m = 8.0;      // no placement before the local map holds this much wall
   double min_score = 0.6;               // the winner explains at least this fraction of the walls
   double min_margin_m = 1.5;            // ... and this many metres of wall more than the runner-up
+  double min_margin_sd = 1.0;           // ... and more than the runner-up by this many sd of the
+                                        // margin two equally good poses would show (wall by wall)
 };
 
 // Throws std::invalid_argument naming the field and its unit.
