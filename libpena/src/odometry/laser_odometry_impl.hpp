@@ -106,6 +106,9 @@ struct LaserOdometry::Impl {
   // over a few metres is off by up to one.
   internal::PaceCheck pace_check;
   OdometryCounts counts;
+  // Where Add's time goes (stage_times()); mutable: the const searches are timed too.
+  mutable StageClock<OdometryStage> clock;
+  using Timed = StageClock<OdometryStage>::Scope;
 
   OdometryEstimate AddScan(const sensors::LaserScan& scan);
   // This scan's covariance; the keyframe's too when it became one.
@@ -128,6 +131,12 @@ struct LaserOdometry::Impl {
                                                 const geometry::Pose2& around,
                                                 bool current_window) const;
   void Match(const scan_matching::Points2& points, OdometryEstimate& out);
+  // One search of the matcher (exhaustive or branch and bound), timed as `stage`; the
+  // refinement's time goes to kRefinement, except in deskew (whose matches are all its own).
+  scan_matching::MatchResult RunMatcher(const scan_matching::Points2& points,
+                                        const geometry::Pose2& around,
+                                        const scan_matching::SearchWindow& searched,
+                                        bool exhaustive, OdometryStage stage) const;
   // pace_check_*: a weakly constrained match that fell behind the walk keeps the prior along it.
   void CheckPace(const Eigen::Matrix3d& information, const geometry::Pose2& prior);
   scan_matching::MatchResult Search(const scan_matching::Points2& points,

@@ -34,8 +34,8 @@ scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Poin
     last_searched = searched;
     out.wide_search = out.wide_search || window.IsWide();
     scan_matching::MatchResult result =
-        window.IsBase() ? matcher->MatchExhaustive(points, prior, searched)
-                        : matcher->MatchBranchAndBound(points, prior, searched);
+        RunMatcher(points, prior, searched, window.IsBase(),
+                   window.IsBase() ? OdometryStage::kSearchBase : OdometryStage::kSearchWide);
     // A low score or a best pose on the window's edge (the optimum may lie outside): search
     // again at once with a grown window, up to the wide one, before giving up on this scan.
     const bool retry = result.score < options.min_score ||
@@ -46,11 +46,14 @@ scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Poin
 
 void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEstimate& out) {
   geometry::Pose2 prior = out.world_from_prior;
-  // The place choice: back where an earlier keyframe was taken, match against that one again.
-  bool rebuild = local_map.ChooseAgain(prior, out.stamp_s);
-  if (FillWhileFrozen()) rebuild = local_map.FillFreeSlots() || rebuild;
-  if (rebuild) {
-    matcher.emplace(options.matcher, local_map.Reference());
+  {
+    const Timed timed(clock, OdometryStage::kReference);
+    // The place choice: back where an earlier keyframe was taken, match against that one again.
+    bool rebuild = local_map.ChooseAgain(prior, out.stamp_s);
+    if (FillWhileFrozen()) rebuild = local_map.FillFreeSlots() || rebuild;
+    if (rebuild) {
+      matcher.emplace(options.matcher, local_map.Reference());
+    }
   }
   const internal::WindowScale window_before = window;
   scan_matching::MatchResult result = Search(points, prior, out);

@@ -45,6 +45,7 @@ scan_matching::Points2 KeyframePoints(const sensors::LaserScan& scan, const Slam
 void SubmapMatcher::Build(const std::vector<Keyframe>& keyframes,
                           const std::vector<geometry::Pose2>& poses, int first, int centre,
                           int last) {
+  const StageClock<SlamStage>::Scope timed(*clock_, SlamStage::kSubmapBuild);
   const geometry::Pose2 centre_from_world =
       geometry::Inverse(poses[static_cast<std::size_t>(centre)]);
   scan_matching::Points2 points;
