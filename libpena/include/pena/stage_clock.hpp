@@ -76,9 +76,11 @@ class StageClock {
     Clock::time_point started_;
   };
 
-  // `seconds` measured inside a `from` stage (a callee's own timer) moved to `to`, one call.
-  void Move(Stage from, Stage to, double seconds) {
-    times_[from].seconds -= seconds;
+  // `seconds` spent in the running stage (measured by a callee's own timer) moved to `to`, as
+  // one call of it. Nothing outside a stage.
+  void Move(Stage to, double seconds) {
+    if (current_ == kOutside) return;
+    times_.stages[current_].seconds -= seconds;
     times_[to].seconds += seconds;
     ++times_[to].calls;
   }

@@ -212,7 +212,9 @@ scan_matching::MatchResult LaserOdometry::Impl::RunMatcher(
                                           ? matcher->MatchExhaustive(points, around, searched)
                                           : matcher->MatchBranchAndBound(points, around, searched);
   if (stage != OdometryStage::kDeskew) {
-    clock.Move(stage, OdometryStage::kRefinement, result.refine_s);
+    clock.Move(OdometryStage::kRefinement, result.refine_s);
+    // Branch and bound's max-grids are built once per reference, at its first wide search.
+    if (result.max_grids_s > 0.0) clock.Move(OdometryStage::kReference, result.max_grids_s);
   }
   return result;
 }

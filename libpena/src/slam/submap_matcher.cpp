@@ -88,6 +88,8 @@ std::optional<LoopMatch> SubmapMatcher::Match(const std::vector<Keyframe>& keyfr
   for (;;) {
     window.size_theta_rad = 2.0 * std::ceil(half_rad / kStepThetaRad) * kStepThetaRad;
     result = matcher_->MatchBranchAndBound(scan, centre_from_prior, window);
+    // The max-grids are built at a submap's first match, again when a window needs more levels.
+    if (result.max_grids_s > 0.0) clock_->Move(SlamStage::kSubmapBuild, result.max_grids_s);
     if (!result.converged || result.score < options_.loop_min_score) return std::nullopt;
     const Edge edge = WindowEdge(result.grid_pose, centre_from_prior, window);
     if (edge == Edge::kNone) break;

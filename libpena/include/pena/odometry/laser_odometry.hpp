@@ -212,8 +212,9 @@ enum class OdometryStage {
   kPoints,          // ranges to points, range filter (again after each deskew pass)
   kDeskew,          // interlace evidence and the deskew passes' matches (refinement included)
   kReference,       // place choice, keyframe densification, local map, the matcher's lookups
+                    // (branch and bound's max-grids included, built at a reference's first use)
   kSearchBase,      // exhaustive search in the paper's window (refinement excluded)
-  kSearchWide,      // branch and bound in grown windows (refinement excluded)
+  kSearchWide,      // branch and bound in grown windows (refinement, max-grids excluded)
   kRefinement,      // least squares after each search
   kCovariance,      // the pose covariance and the reference's
   kKeyframePolicy,  // weak direction, pace check, prior gate, keyframe decision

@@ -34,7 +34,7 @@ struct SlamCounts {
 enum class SlamStage {
   kKeyframes,     // a keyframe's points, its graph node and odometry edge
   kCandidates,    // the loop candidate search over older keyframes
-  kSubmapBuild,   // a submap's points and matcher (lookups) when centre or graph changed
+  kSubmapBuild,   // a submap's points and matcher (lookups, max-grids) when centre or graph changed
   kLoopMatch,     // the narrow window's branch and bound and refinement
   kWideMatch,     // the wide checks' matches
   kOptimisation,  // pose-graph solves (after each closure, its removal, and at Finish)
