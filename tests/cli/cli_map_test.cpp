@@ -85,6 +85,13 @@ TEST(CliMap, SlamClosuresFileListsMatchesThatAgreeWithTheTruth) {
   }
   EXPECT_EQ(kept, printed_kept);
   EXPECT_EQ(dropped, printed_dropped);
+  // summary.json: the same counts, the stage times of the SLAM pass, the peak memory.
+  const std::string summary = ReadBytes(out / "summary.json");
+  EXPECT_NE(summary.find("\"loop_closures\": " + std::to_string(printed_kept) + ","), std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("\"slam\": {\"total\": {\"s\": "), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"loop_match\": {\"s\": "), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"peak_rss_mb\": "), std::string::npos) << summary;
   ASSERT_GT(kept, 10);
   std::nth_element(errors_m.begin(), errors_m.begin() + errors_m.size() / 2, errors_m.end());
   EXPECT_LT(errors_m[errors_m.size() / 2], 0.1);

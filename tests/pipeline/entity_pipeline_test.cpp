@@ -97,6 +97,29 @@ TEST(EntityPipeline, PublishesAPosePerScanAndFollowsTheTruth) {
   EXPECT_LT(std::hypot(truth.x_m - estimate.x_m, truth.y_m - estimate.y_m), 0.3);
 }
 
+// Where the pipeline's time goes: every scan's odometry and grid insertion, the extractions; the
+// stages sum to no more than the total, whose odometry stage holds the odometry's own total.
+TEST(EntityPipeline, StageTimesFillTheMapStagesAndSumToNoMoreThanTheTotal) {
+  const sim::EntityRecording& robot = Robot();
+  EntityPipeline pipeline = MakePipeline(robot);
+  const Replayed run = Replay(pipeline, robot);
+  const PipelineStageTimes& t = pipeline.stage_times();
+  const odometry::OdometryStageTimes& odometry = pipeline.odometry().stage_times();
+  EXPECT_EQ(t[PipelineStage::kOdometry].calls, static_cast<long>(robot.records.size()));
+  EXPECT_EQ(t[PipelineStage::kGridInsertion].calls, static_cast<long>(robot.scans));
+  EXPECT_GE(t[PipelineStage::kLineExtraction].calls, 1);
+  EXPECT_EQ(t[PipelineStage::kSlam].calls, 0);
+  for (PipelineStage stage : {PipelineStage::kOdometry, PipelineStage::kGridInsertion,
+                              PipelineStage::kLineExtraction}) {
+    EXPECT_GT(t[stage].seconds, 0.0) << ToString(stage);
+  }
+  for (const StageTime& stage : t.stages) EXPECT_GE(stage.seconds, 0.0);
+  EXPECT_LE(t.StagesSeconds(), t.total.seconds + 1e-9);
+  EXPECT_GE(t[PipelineStage::kOdometry].seconds, odometry.total.seconds);
+  EXPECT_EQ(odometry.total.calls, static_cast<long>(robot.records.size()));
+  EXPECT_FALSE(run.steps.empty());
+}
+
 // The SLAM stage is KeyframeSlam fed with every step's odometry pose, inside the pipeline (as
 // `pena map` runs it): the same corrected trajectory as feeding it by hand.
 TEST(EntityPipeline, TheSlamStageIsKeyframeSlamOverTheOdometryPoses) {

@@ -1,6 +1,7 @@
 // The keyframe SLAM on a simulated corridor loop walked 1.3 times with a drifting heading.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -78,6 +79,9 @@ double Distance(const Pose2& a, const Pose2& b) { return std::hypot(a.x_m - b.x_
 // The corridor loop walked 1.3 times with a heading drift of 0.34 deg per metre (11 deg per lap).
 struct DriftedLoop {
   SlamCounts counts;
+  SlamStageTimes stage_times;
+  long calls = 0;         // of Add and Finish
+  double wall_s = 0.0;    // around them, measured here
   std::vector<LoopClosureRecord> closures;
   std::vector<Pose2> truth;  // scan i at stamp 0.1 i s
   double odometry_error_m = 0.0;  // at the end
@@ -96,6 +100,7 @@ DriftedLoop RunDriftedLoop(const SlamOptions& options, double heading_drift_rad 
   KeyframeSlam slam(options);
   Pose2 odometry = truth.front();
   DriftedLoop run;
+  double inside_s = 0.0;
   for (std::size_t i = 0; i < truth.size(); ++i) {
     if (i > 0) {
       Pose2 motion = geometry::Between(truth[i - 1], truth[i]);
@@ -104,9 +109,17 @@ DriftedLoop RunDriftedLoop(const SlamOptions& options, double heading_drift_rad 
       odometry = geometry::Compose(odometry, motion);
     }
     run.odometry_error_m = Distance(odometry, truth[i]);
-    slam.Add(Scan(raycaster, truth[i], 0.1 * static_cast<double>(i)), odometry);
+    const sensors::LaserScan scan = Scan(raycaster, truth[i], 0.1 * static_cast<double>(i));
+    const auto started = std::chrono::steady_clock::now();
+    slam.Add(scan, odometry);
+    inside_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    ++run.calls;
   }
+  const auto started = std::chrono::steady_clock::now();
   slam.Finish();
+  run.wall_s = inside_s + std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  ++run.calls;
+  run.stage_times = slam.stage_times();
   const geometry::Trajectory corrected = slam.Trajectory();
   EXPECT_EQ(corrected.size(), truth.size());
   for (std::size_t i = 0; i < truth.size() && i < corrected.size(); ++i) {
@@ -129,6 +142,30 @@ TEST(KeyframeSlam, ClosesTheLoopAndRemovesTheHeadingDrift) {
 
 // closures() lists each match that reached the graph: the kept ones measure their keyframes'
 // true relative pose, which the drifted odometry (the graph's prior) had wrong.
+// Where the SLAM's time goes: each loop check is one narrow or wide match, each solve one
+// optimisation; the stages sum to no more than the time inside Add and Finish.
+TEST(KeyframeSlam, StageTimesCountEveryCheckAndSolveAndSumToNoMoreThanTheTotal) {
+  SlamOptions options;
+  options.loop_wide_min_path_m = 20.0;
+  options.loop_wide_window_m = 1.8;
+  const DriftedLoop run = RunDriftedLoop(options, 0.0, 1.5);
+  const SlamStageTimes& t = run.stage_times;
+  ASSERT_GT(run.counts.wide_checks, 0);
+  EXPECT_EQ(t.total.calls, run.calls);
+  EXPECT_EQ(t[SlamStage::kKeyframes].calls, run.counts.keyframes);
+  EXPECT_EQ(t[SlamStage::kLoopMatch].calls + t[SlamStage::kWideMatch].calls, run.counts.loop_checks);
+  EXPECT_GT(t[SlamStage::kWideMatch].calls, 0);
+  EXPECT_EQ(t[SlamStage::kOptimisation].calls, run.counts.optimisations);
+  EXPECT_GT(t[SlamStage::kSubmapBuild].calls, 0);
+  for (SlamStage stage : {SlamStage::kKeyframes, SlamStage::kCandidates, SlamStage::kSubmapBuild,
+                          SlamStage::kLoopMatch, SlamStage::kWideMatch, SlamStage::kOptimisation}) {
+    EXPECT_GT(t[stage].seconds, 0.0) << ToString(stage);
+  }
+  for (const StageTime& stage : t.stages) EXPECT_GE(stage.seconds, 0.0);
+  EXPECT_LE(t.StagesSeconds(), t.total.seconds + 1e-9);
+  EXPECT_LE(t.total.seconds, run.wall_s);
+}
+
 TEST(KeyframeSlam, ClosureRecordsMeasureTheTrueRelativePose) {
   const DriftedLoop run = RunDriftedLoop({});
   ASSERT_EQ(static_cast<long>(run.closures.size()), run.counts.loop_matched);

@@ -1,5 +1,6 @@
 #include "cli_support.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -13,6 +14,12 @@ std::string Fixed(double value, int decimals) {
   char buffer[64];
   std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
   return buffer;
+}
+
+double PeakResidentMb() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: kilobytes
 }
 
 Setting ParseSetting(const std::string& setting) {

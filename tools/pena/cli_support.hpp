@@ -1,6 +1,7 @@
 #pragma once
-// Small pieces every subcommand shares: number and JSON formatting, wall-clock timing, the
-// progress line on long logs, and the rule for where a run over a log starts.
+// Small pieces every subcommand shares: number and JSON formatting, wall-clock timing, stage
+// times and peak memory for summaries, the progress line on long logs, and the rule for where a
+// run over a log starts.
 
 #include <chrono>
 #include <map>
@@ -11,6 +12,7 @@
 #include "pena/io/log_source.hpp"
 #include "pena/pipeline/start_pose.hpp"
 #include "pena/sensors/record.hpp"
+#include "pena/stage_clock.hpp"
 
 namespace pena::cli {
 
@@ -24,6 +26,24 @@ std::string JsonString(const std::string& text);
 
 // Wall-clock seconds since `start`.
 double SecondsSince(Clock::time_point start);
+
+// The process's peak resident memory so far (getrusage ru_maxrss), megabytes (2^20 bytes).
+double PeakResidentMb();
+
+// {"total": {"s": S, "calls": N}, "<stage>": {...}, ...}: a chain's stage times for summary.json
+// (stage names from ToString).
+template <typename Stage>
+std::string StageTimesJson(const StageTimes<Stage>& times) {
+  const auto entry = [](const std::string& name, const StageTime& time) {
+    return JsonString(name) + ": {\"s\": " + Fixed(time.seconds, 4) +
+           ", \"calls\": " + std::to_string(time.calls) + "}";
+  };
+  std::string json = "{" + entry("total", times.total);
+  for (std::size_t i = 0; i < times.stages.size(); ++i) {
+    json += ", " + entry(ToString(static_cast<Stage>(i)), times.stages[i]);
+  }
+  return json + "}";
+}
 
 // One `--set NAME=NUMBER` setting, split and checked (a finite number, nothing after it).
 struct Setting {

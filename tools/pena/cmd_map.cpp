@@ -120,6 +120,8 @@ class PoseFeeder {
       while (const std::optional<pipeline::ScanStep> step = chain_->Next()) PlaceStep(*step);
       // Scans the odometry gave no pose.
       run_.skipped_no_pose += run_.scans - placed_;
+      run_.pipeline_stages = chain_->stage_times();
+      run_.odometry_stages = chain_->odometry().stage_times();
     }
     run_.wall_s = SecondsSince(started);
   }
@@ -135,6 +137,9 @@ class PoseFeeder {
   }
 
   void Feed(const sensors::SensorRecord& record) {
+    const double stamp_s = sensors::StampOf(record);
+    if (!run_.first_stamp_s) run_.first_stamp_s = stamp_s;
+    run_.last_stamp_s = std::max(run_.last_stamp_s, stamp_s);
     const auto* scan = std::get_if<sensors::LaserScan>(&record);
     if (scan != nullptr) ++run_.scans;
     if (chain_) {
@@ -192,6 +197,7 @@ class PoseFeeder {
 };
 
 void RunMap(const MapArgs& args) {
+  const auto started = Clock::now();
   geometry::Trajectory trajectory;
   grid::GridOptions grid_options;
   grid_options.resolution_m = args.resolution_m;
@@ -245,7 +251,10 @@ void RunMap(const MapArgs& args) {
   io::WriteRosMap(out_dir / "grid", image);
   WriteMapPicture(out_dir / "map.png", image, lines);
   const MapBytes bytes = MeasureBytes(out_dir, run.map, image);
-  PrintSummary(run, image, lines, bytes, extract_s, SecondsSince(write_start));
+  const double write_s = SecondsSince(write_start);
+  WriteSummaryJson(out_dir / "summary.json", args, run, image, lines, extract_s, write_s,
+                   SecondsSince(started));
+  PrintSummary(run, image, lines, bytes, extract_s, write_s);
 }
 
 }  // namespace

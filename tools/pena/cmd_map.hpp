@@ -61,6 +61,12 @@ struct MapRun {
   std::string pose_source;  // "trajectory", "logged poses", "odometry", "odometry + SLAM"
   std::optional<slam::SlamCounts> slam;  // when the SLAM pass ran
   double slam_wall_s = 0.0;
+  // Where the time went in the chain that gave the poses (SLAM pass or odometry), when one ran.
+  std::optional<pipeline::PipelineStageTimes> pipeline_stages;
+  std::optional<odometry::OdometryStageTimes> odometry_stages;
+  std::optional<slam::SlamStageTimes> slam_stages;
+  std::optional<double> first_stamp_s;  // of the records read (the log's span)
+  double last_stamp_s = 0.0;
   long scans = 0;
   long used = 0;
   long skipped_no_pose = 0;
@@ -94,6 +100,10 @@ void WriteMapPicture(const std::filesystem::path& path, const grid::GridImage& i
 // The byte sizes of the written map.
 MapBytes MeasureBytes(const std::filesystem::path& out_dir, const line_map::LineMap& map,
                       const grid::GridImage& image);
+// DIR/summary.json: counts, times (per stage of the chain that gave the poses), peak memory.
+void WriteSummaryJson(const std::filesystem::path& path, const MapArgs& args, const MapRun& run,
+                      const grid::GridImage& image, const std::vector<line_map::LineSegment>& lines,
+                      double extract_s, double write_s, double total_wall_s);
 // The summary on stdout.
 void PrintSummary(const MapRun& run, const grid::GridImage& image,
                   const std::vector<line_map::LineSegment>& lines, const MapBytes& bytes,

@@ -1,6 +1,7 @@
 // pena map: what it writes (lines.csv/svg/dxf, map.png), the byte sizes of the map in its
 // encodings and the summary on stdout. Formats: docs/line-extraction.md, docs/line-map.md.
 #include <array>
+#include <fstream>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
@@ -111,6 +112,44 @@ MapBytes MeasureBytes(const std::filesystem::path& out_dir, const line_map::Line
   const line_map::MapSnapshot snapshot = map.Snapshot();
   return {std::filesystem::file_size(out_dir / "lines.csv"), io::EncodeSnapshot(snapshot).size(),
           line_map::PackSnapshot(snapshot).size(), PngBytes(image.occupancy)};
+}
+
+void WriteSummaryJson(const std::filesystem::path& path, const MapArgs& args, const MapRun& run,
+                      const grid::GridImage& image, const std::vector<line_map::LineSegment>& lines,
+                      double extract_s, double write_s, double total_wall_s) {
+  const double log_s = run.first_stamp_s ? run.last_stamp_s - *run.first_stamp_s : 0.0;
+  std::ofstream out(path);
+  out << "{\"log\": " << JsonString(args.log) << ", \"pose_source\": " << JsonString(run.pose_source)
+      << ", \"scans\": " << run.scans << ", \"used\": " << run.used
+      << ", \"skipped_no_pose\": " << run.skipped_no_pose << ", \"refused\": " << run.refused;
+  if (run.second_pass) out << ", \"bent_scans\": " << run.bent_scans;
+  if (const auto& c = run.slam) {
+    out << ", \"slam\": {\"keyframes\": " << c->keyframes << ", \"loop_checks\": " << c->loop_checks
+        << ", \"wide_checks\": " << c->wide_checks << ", \"loop_matched\": " << c->loop_matched
+        << ", \"loop_closures\": " << c->loop_closures
+        << ", \"loop_rejected\": " << c->loop_rejected
+        << ", \"optimisations\": " << c->optimisations << "}";
+  }
+  out << ", \"grid_cells\": [" << image.occupancy.cols << ", " << image.occupancy.rows << "]"
+      << ", \"segments\": " << lines.size() << ", \"segments_length_m\": " << Fixed(TotalLength(lines), 1)
+      << ", \"log_duration_s\": " << Fixed(log_s, 6)
+      << ", \"slam_wall_s\": " << Fixed(run.slam_wall_s, 3)
+      << ", \"grid_wall_s\": " << Fixed(run.wall_s, 3) << ", \"extract_s\": " << Fixed(extract_s, 3)
+      << ", \"write_s\": " << Fixed(write_s, 3) << ", \"total_wall_s\": " << Fixed(total_wall_s, 3)
+      << ", \"speed_x_real_time\": " << Fixed(total_wall_s > 0.0 ? log_s / total_wall_s : 0.0, 2)
+      << ", \"peak_rss_mb\": " << Fixed(PeakResidentMb(), 1) << ", \"stage_times\": {";
+  const char* separator = "";
+  if (run.pipeline_stages) {
+    out << "\"pipeline\": " << StageTimesJson(*run.pipeline_stages);
+    separator = ", ";
+  }
+  if (run.odometry_stages) {
+    out << separator << "\"odometry\": " << StageTimesJson(*run.odometry_stages);
+    separator = ", ";
+  }
+  if (run.slam_stages) out << separator << "\"slam\": " << StageTimesJson(*run.slam_stages);
+  out << "}}\n";
+  if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
 }
 
 void PrintSummary(const MapRun& run, const grid::GridImage& image,

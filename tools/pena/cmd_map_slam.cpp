@@ -157,6 +157,9 @@ std::optional<geometry::Trajectory> RunSlamPass(const MapArgs& args, MapRun& run
   io::WriteTum(std::filesystem::path(args.out) / "trajectory.tum", trajectory);
   WriteClosures(std::filesystem::path(args.out) / "closures.csv", slam.closures());
   run.slam = slam.counts();
+  run.pipeline_stages = chain.stage_times();
+  run.odometry_stages = chain.odometry().stage_times();
+  run.slam_stages = slam.stage_times();
   run.slam_wall_s = SecondsSince(started);
   return trajectory;
 }

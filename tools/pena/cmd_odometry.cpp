@@ -122,6 +122,9 @@ struct RunResult {
   double first_stamp_s = 0.0;
   double last_stamp_s = 0.0;
   double wall_s = 0.0;  // reading the log and running the odometry
+  // Where the time went: the pipeline's stages and, inside its odometry stage, the odometry's.
+  pipeline::PipelineStageTimes pipeline_stages;
+  odometry::OdometryStageTimes odometry_stages;
 };
 
 // One scan's estimate into the outputs.
@@ -185,6 +188,8 @@ RunResult RunChain(io::LogSource& source, const OdometryArgs& args,
     run.dead_reckoning = chain.odometry().dead_reckoning_counts();
   }
   run.spreading = chain.stride_spreading();
+  run.pipeline_stages = chain.stage_times();
+  run.odometry_stages = chain.odometry().stage_times();
   run.wall_s = SecondsSince(started);
   return run;
 }
@@ -249,7 +254,10 @@ void WriteSummaryJson(const std::filesystem::path& path, const OdometryArgs& arg
       << ", \"log_duration_s\": " << Fixed(run.last_stamp_s - run.first_stamp_s, 6)
       << ", \"processing_wall_s\": " << Fixed(run.wall_s, 3)
       << ", \"total_wall_s\": " << Fixed(total_wall_s, 3)
-      << ", \"speed_x_real_time\": " << Fixed(Speed(run), 2) << "}\n";
+      << ", \"speed_x_real_time\": " << Fixed(Speed(run), 2)
+      << ", \"peak_rss_mb\": " << Fixed(PeakResidentMb(), 1)
+      << ", \"stage_times\": {\"pipeline\": " << StageTimesJson(run.pipeline_stages)
+      << ", \"odometry\": " << StageTimesJson(run.odometry_stages) << "}}\n";
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
 }
 

@@ -72,6 +72,7 @@ LaserOdometry::LaserOdometry(LaserOdometry&&) noexcept = default;
 LaserOdometry& LaserOdometry::operator=(LaserOdometry&&) noexcept = default;
 
 std::optional<OdometryEstimate> LaserOdometry::Add(const sensors::SensorRecord& record) {
+  const StageClock<OdometryStage>::Call call(impl_->clock, OdometryStage::kOther);
   if (const auto* scan = std::get_if<sensors::LaserScan>(&record)) {
     if (impl_->last_scan_stamp_s && !(scan->stamp_s > *impl_->last_scan_stamp_s)) {
       ++impl_->counts.records_ignored;  // a scan not after the previous one: time must advance
@@ -80,9 +81,9 @@ std::optional<OdometryEstimate> LaserOdometry::Add(const sensors::SensorRecord& 
     impl_->last_scan_stamp_s = scan->stamp_s;
     return impl_->AddScan(*scan);
   }
-  if (!std::holds_alternative<sensors::GroundTruth>(record) && !impl_->motion.Add(record)) {
-    ++impl_->counts.records_ignored;
-  }
+  if (std::holds_alternative<sensors::GroundTruth>(record)) return std::nullopt;
+  const Impl::Timed timed(impl_->clock, OdometryStage::kPrediction);
+  if (!impl_->motion.Add(record)) ++impl_->counts.records_ignored;
   return std::nullopt;
 }
 
@@ -93,10 +94,17 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
   gate_trusted = false;
   fell_back = false;
   keyframe_from_this_scan = false;
-  out.world_from_prior = Predict(scan);
+  {
+    const Timed timed(clock, OdometryStage::kPrediction);
+    out.world_from_prior = Predict(scan);
+  }
   match_weak_direction.reset();
   poor_timing = timing.Add(scan.stamp_s);
-  const scan_matching::Points2 points = MidSweepPoints(scan, out);
+  scan_matching::Points2 points;
+  {
+    const Timed timed(clock, OdometryStage::kPoints);
+    points = MidSweepPoints(scan, out);
+  }
   out.points = static_cast<int>(points.size());
   out.stale = stale_scans.IsStale(scan);
   counts.stale += out.stale ? 1 : 0;
@@ -110,10 +118,14 @@ OdometryEstimate LaserOdometry::Impl::AddScan(const sensors::LaserScan& scan) {
     out.status = MatchStatus::kNoPoints;  // dead reckoning carries on
     ++counts.no_points;
   } else {
+    const Timed timed(clock, OdometryStage::kKeyframePolicy);
     Match(points, out);
   }
   out.world_from_body = estimate;
-  UpdateCovariance(out);
+  {
+    const Timed timed(clock, OdometryStage::kCovariance);
+    UpdateCovariance(out);
+  }
   out.covariance = covariance;
   // Stretches matched in every direction calibrate the stride scale used in corridors.
   motion.AddPositionFix(scan.stamp_s, estimate,
@@ -156,7 +168,10 @@ scan_matching::Points2 LaserOdometry::Impl::MidSweepPoints(const sensors::LaserS
            *interval_s;
   };
   // The interlace the scans show (interlace_evidence.hpp), not only the one the reader assumed.
-  interlace_evidence.Add(logged, turn_rate_rad_s(out.world_from_prior), options.min_range_m);
+  {
+    const Timed timed(clock, OdometryStage::kDeskew);
+    interlace_evidence.Add(logged, turn_rate_rad_s(out.world_from_prior), options.min_range_m);
+  }
   sensors::LaserScan scan = logged;
   scan.geometry.interlace = interlace_evidence.Interlace(logged.geometry.interlace);
   counts.laser_interlace = interlace_evidence.decided().value_or(0);
@@ -184,10 +199,25 @@ std::optional<geometry::Pose2> LaserOdometry::Impl::MatchForDeskew(
   const bool base = !current_window || window.IsBase();
   const scan_matching::SearchWindow searched = base ? options.window : window.Current();
   const scan_matching::MatchResult result =
-      base ? matcher->MatchExhaustive(points, around, searched)
-           : matcher->MatchBranchAndBound(points, around, searched);
+      RunMatcher(points, around, searched, base, OdometryStage::kDeskew);
   if (result.score < options.min_score) return std::nullopt;
   return result.reference_from_scan;
+}
+
+scan_matching::MatchResult LaserOdometry::Impl::RunMatcher(
+    const scan_matching::Points2& points, const geometry::Pose2& around,
+    const scan_matching::SearchWindow& searched, bool exhaustive, OdometryStage stage,
+    scan_matching::Polish polish) const {
+  const Timed timed(clock, stage);
+  scan_matching::MatchResult result =
+      exhaustive ? matcher->MatchExhaustive(points, around, searched, polish)
+                 : matcher->MatchBranchAndBound(points, around, searched, polish);
+  // Branch and bound's max-grids are built once per reference, at its first wide search. (The
+  // kept match's refinement is timed where Match calls it; deskew's matches are all its own.)
+  if (stage != OdometryStage::kDeskew && result.max_grids_s > 0.0) {
+    clock.Move(OdometryStage::kReference, result.max_grids_s);
+  }
+  return result;
 }
 
 geometry::Pose2 LaserOdometry::Impl::Predict(const sensors::LaserScan& scan) {
@@ -227,6 +257,25 @@ const OdometryCounts& LaserOdometry::counts() const { return impl_->counts; }
 
 const dead_reckoning::DeadReckoningCounts& LaserOdometry::dead_reckoning_counts() const {
   return impl_->motion.dead_reckoning_counts();
+}
+
+const OdometryStageTimes& LaserOdometry::stage_times() const { return impl_->clock.times(); }
+
+const char* ToString(OdometryStage stage) {
+  switch (stage) {
+    case OdometryStage::kPrediction: return "prediction";
+    case OdometryStage::kPoints: return "points";
+    case OdometryStage::kDeskew: return "deskew";
+    case OdometryStage::kReference: return "reference";
+    case OdometryStage::kSearchBase: return "search_base";
+    case OdometryStage::kSearchWide: return "search_wide";
+    case OdometryStage::kRefinement: return "refinement";
+    case OdometryStage::kCovariance: return "covariance";
+    case OdometryStage::kKeyframePolicy: return "keyframe_policy";
+    case OdometryStage::kOther: return "other";
+    case OdometryStage::kCount: break;
+  }
+  return "unknown";
 }
 
 const char* ToString(MatchStatus status) {

@@ -50,6 +50,7 @@ void LaserOdometry::Impl::UpdateCovariance(const OdometryEstimate& out) {
 
 Eigen::Matrix3d LaserOdometry::Impl::ReferenceCovariance(
     const geometry::Pose2& world_from_body) const {
+  const Timed timed(clock, OdometryStage::kCovariance);
   Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
   double weight = 0.0;
   for (const internal::Keyframe* keyframe : local_map.ReferenceKeyframes()) {

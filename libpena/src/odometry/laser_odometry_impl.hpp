@@ -106,6 +106,9 @@ struct LaserOdometry::Impl {
   // over a few metres is off by up to one.
   internal::PaceCheck pace_check;
   OdometryCounts counts;
+  // Where Add's time goes (stage_times()); mutable: the const searches are timed too.
+  mutable StageClock<OdometryStage> clock;
+  using Timed = StageClock<OdometryStage>::Scope;
 
   OdometryEstimate AddScan(const sensors::LaserScan& scan);
   // This scan's covariance; the keyframe's too when it became one.
@@ -128,6 +131,13 @@ struct LaserOdometry::Impl {
                                                 const geometry::Pose2& around,
                                                 bool current_window) const;
   void Match(const scan_matching::Points2& points, OdometryEstimate& out);
+  // One search of the matcher (exhaustive or branch and bound), timed as `stage`; a max-grid
+  // build goes to kReference, except in deskew (whose matches are all its own).
+  scan_matching::MatchResult RunMatcher(const scan_matching::Points2& points,
+                                        const geometry::Pose2& around,
+                                        const scan_matching::SearchWindow& searched,
+                                        bool exhaustive, OdometryStage stage,
+                                        scan_matching::Polish polish = scan_matching::Polish::kRefine) const;
   // pace_check_*: a weakly constrained match that fell behind the walk keeps the prior along it.
   void CheckPace(const Eigen::Matrix3d& information, const geometry::Pose2& prior);
   // The window regrowth around one prior; the result is the best grid pose, not yet refined.

@@ -76,11 +76,13 @@ scan_matching::MatchResult LaserOdometry::Impl::SearchFilled(
     const scan_matching::Points2& points, const geometry::Pose2& prior,
     const internal::WindowScale& window_before, scan_matching::MatchResult first,
     OdometryEstimate& out) {
+  std::optional<Timed> timed(std::in_place, clock, OdometryStage::kReference);
   std::optional<scan_matching::Points2> filled = local_map.FilledReference();
   if (!filled) return first;
   const internal::WindowScale window_after = window;
   std::optional<scan_matching::CorrelationScanMatcher> chosen = std::move(matcher);
   matcher.emplace(options.matcher, *filled);
+  timed.reset();
   window = window_before;
   scan_matching::MatchResult other = Search(points, prior, out);
   if (other.score > first.score) {
@@ -115,6 +117,7 @@ bool LaserOdometry::Impl::NearAKeyframe(const geometry::Pose2& moved) const {
 void LaserOdometry::Impl::AddKeyframe(const scan_matching::Points2& points,
                                       const geometry::Pose2& world_from_body, bool bursty,
                                       double stamp_s, const Eigen::Matrix3d& keyframe_covariance) {
+  const Timed timed(clock, OdometryStage::kReference);
   const double max_gap_beams = bursty ? options.reference_fill_max_gap_beams_bursty
                                       : options.reference_fill_max_gap_beams;
   local_map.Add({world_from_body,

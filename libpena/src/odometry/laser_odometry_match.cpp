@@ -36,8 +36,9 @@ scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Poin
     // Unrefined: Match refines only the search it keeps (a grown window or another prior may win).
     constexpr auto kPolish = scan_matching::Polish::kGridPoseOnly;
     scan_matching::MatchResult result =
-        window.IsBase() ? matcher->MatchExhaustive(points, prior, searched, kPolish)
-                        : matcher->MatchBranchAndBound(points, prior, searched, kPolish);
+        RunMatcher(points, prior, searched, window.IsBase(),
+                   window.IsBase() ? OdometryStage::kSearchBase : OdometryStage::kSearchWide,
+                   kPolish);
     // A low score or a best pose on the window's edge (the optimum may lie outside): search
     // again at once with a grown window, up to the wide one, before giving up on this scan.
     const bool retry = result.score < options.min_score ||
@@ -48,11 +49,14 @@ scan_matching::MatchResult LaserOdometry::Impl::Search(const scan_matching::Poin
 
 void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEstimate& out) {
   geometry::Pose2 prior = out.world_from_prior;
-  // The place choice: back where an earlier keyframe was taken, match against that one again.
-  bool rebuild = local_map.ChooseAgain(prior, out.stamp_s);
-  if (FillWhileFrozen()) rebuild = local_map.FillFreeSlots() || rebuild;
-  if (rebuild) {
-    matcher.emplace(options.matcher, local_map.Reference());
+  {
+    const Timed timed(clock, OdometryStage::kReference);
+    // The place choice: back where an earlier keyframe was taken, match against that one again.
+    bool rebuild = local_map.ChooseAgain(prior, out.stamp_s);
+    if (FillWhileFrozen()) rebuild = local_map.FillFreeSlots() || rebuild;
+    if (rebuild) {
+      matcher.emplace(options.matcher, local_map.Reference());
+    }
   }
   const internal::WindowScale window_before = window;
   scan_matching::MatchResult result = Search(points, prior, out);
@@ -82,7 +86,10 @@ void LaserOdometry::Impl::Match(const scan_matching::Points2& points, OdometryEs
     TakeKeyframe(points, out);
     return;
   }
-  matcher->Refine(points, result);  // the matcher that found it (SearchFilled may have swapped)
+  {
+    const Timed timed(clock, OdometryStage::kRefinement);
+    matcher->Refine(points, result);  // the matcher that found it (SearchFilled may have swapped)
+  }
   estimate = result.reference_from_scan;
   match_information = result.information;
   match_reference_covariance = ReferenceCovariance(estimate);  // before a keyframe changes it

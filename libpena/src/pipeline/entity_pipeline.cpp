@@ -137,8 +137,10 @@ EntityPipeline::EntityPipeline(EntityPipeline&&) noexcept = default;
 EntityPipeline& EntityPipeline::operator=(EntityPipeline&&) noexcept = default;
 
 void EntityPipeline::Push(sensors::SensorRecord record) {
+  const TimedCall call(clock_, PipelineStage::kOther);
   pushed_ = true;
   if (spread_) {
+    const Timed timed(clock_, PipelineStage::kStrideSpreading);
     spread_->Push(std::move(record));
   } else {
     ready_.push_back(std::move(record));
@@ -146,7 +148,10 @@ void EntityPipeline::Push(sensors::SensorRecord record) {
 }
 
 std::optional<sensors::SensorRecord> EntityPipeline::PopReady() {
-  if (spread_) return spread_->Pop();
+  if (spread_) {
+    const Timed timed(clock_, PipelineStage::kStrideSpreading);
+    return spread_->Pop();
+  }
   if (ready_.empty()) return std::nullopt;
   sensors::SensorRecord record = std::move(ready_.front());
   ready_.pop_front();
@@ -154,6 +159,7 @@ std::optional<sensors::SensorRecord> EntityPipeline::PopReady() {
 }
 
 std::optional<ScanStep> EntityPipeline::Next() {
+  const TimedCall call(clock_, PipelineStage::kOther);
   while (std::optional<sensors::SensorRecord> record = PopReady()) {
     if (std::optional<ScanStep> step = Step(*record)) return step;
   }
@@ -161,6 +167,8 @@ std::optional<ScanStep> EntityPipeline::Next() {
 }
 
 void EntityPipeline::EndOfInput() {
+  const TimedCall call(clock_, PipelineStage::kOther);
+  const Timed timed(clock_, PipelineStage::kStrideSpreading);
   if (spread_) spread_->Finish();
 }
 
@@ -178,15 +186,23 @@ std::optional<dead_reckoning::StrideInterpolationCounts> EntityPipeline::stride_
 
 std::optional<ScanStep> EntityPipeline::Step(const sensors::SensorRecord& record) {
   // An unknown start with a compass holds the scans until the first compass sample.
-  if (plan_ && !plan_->Admit(record, odometry_)) return std::nullopt;
+  if (plan_) {
+    const Timed timed(clock_, PipelineStage::kPlan);
+    if (!plan_->Admit(record, odometry_)) return std::nullopt;
+  }
   // Section 2: dead reckoning predicts, the scan matcher corrects against the reference.
-  std::optional<odometry::OdometryEstimate> estimate = odometry_.Add(record);
+  std::optional<odometry::OdometryEstimate> estimate;
+  {
+    const Timed timed(clock_, PipelineStage::kOdometry);
+    estimate = odometry_.Add(record);
+  }
   if (!estimate) return std::nullopt;
   ScanStep step;
   const auto& scan = std::get<sensors::LaserScan>(record);
   // Section 4.2: against the plan first, so this scan is already placed where the plan says.
   std::optional<line_map::MapDelta> reset_delta;
   if (plan_) {
+    const Timed timed(clock_, PipelineStage::kPlan);
     step.plan = LocaliseOnPlan(record, *estimate, reset_delta);
     step.plan_round = step.plan->correction;
   }
@@ -199,7 +215,10 @@ std::optional<ScanStep> EntityPipeline::Step(const sensors::SensorRecord& record
   step.odometry = std::move(*estimate);
   step.scan = scan;
   // Beyond the paper (its future work): loop closures over the odometry's keyframes.
-  if (slam_) slam_->Add(scan, step.odometry.world_from_body);
+  if (slam_) {
+    const Timed timed(clock_, PipelineStage::kSlam);
+    slam_->Add(scan, step.odometry.world_from_body);
+  }
   last_world_from_body_ = step.world_from_body;
   // Section 3: the scan goes into the local grid at the corrected pose (levelled or left out if
   // the first pass showed it bent); lines come out of it. A grid just reset by a plan correction
@@ -260,10 +279,14 @@ localisation::LocalisedPose EntityPipeline::LocaliseOnPlan(const sensors::Sensor
 std::optional<line_map::MapDelta> EntityPipeline::UpdateMap(
     const sensors::LaserScan& scan, const geometry::Pose2& world_from_body, bool may_extract) {
   if (!options_.build_line_map) return std::nullopt;
-  // The laser sits at the body origin (as in the simulator and the CARMEN logs).
-  if (grid_.Insert(scan, world_from_body)) grid_has_scans_ = true;
+  {
+    const Timed timed(clock_, PipelineStage::kGridInsertion);
+    // The laser sits at the body origin (as in the simulator and the CARMEN logs).
+    if (grid_.Insert(scan, world_from_body)) grid_has_scans_ = true;
+  }
   if (!last_extraction_pose_) last_extraction_pose_ = world_from_body;
   if (!may_extract) return std::nullopt;
+  const Timed timed(clock_, PipelineStage::kLineExtraction);
   std::optional<line_map::MapDelta> delta;
   if (grid_.NeedsRecentre(world_from_body)) {
     delta = ExtractAndIntegrate(grid_.Recentre(world_from_body));
@@ -287,6 +310,7 @@ line_map::MapDelta EntityPipeline::ExtractAndIntegrate(const grid::GridImage& im
 
 Placement EntityPipeline::Place(const sensors::LaserScan& scan,
                                 const geometry::Pose2& world_from_body) {
+  const TimedCall call(clock_, PipelineStage::kOther);
   last_world_from_body_ = world_from_body;
   Levelling levelling = JudgeBent(scan, world_from_body);
   Placement placement;
@@ -307,6 +331,7 @@ EntityPipeline::Levelling EntityPipeline::JudgeBent(const sensors::LaserScan& sc
                                                     const geometry::Pose2& world_from_body) {
   Levelling levelling;
   if (!bent_reference_) return levelling;
+  const Timed timed(clock_, PipelineStage::kBentScans);
   // The laser sits at the body origin, so the body pose is world_from_laser.
   const std::optional<grid::FloorLine> floor =
       leveller_.FloorLineOf(*bent_reference_, scan, world_from_body);
@@ -320,6 +345,8 @@ EntityPipeline::Levelling EntityPipeline::JudgeBent(const sensors::LaserScan& sc
 }
 
 line_map::MapDelta EntityPipeline::Flush() {
+  const TimedCall call(clock_, PipelineStage::kOther);
+  const Timed timed(clock_, PipelineStage::kLineExtraction);
   if (!grid_has_scans_) return local_map_.Integrate({}, entity_id_);
   return ExtractAndIntegrate(grid_.ToImage());
 }
@@ -408,6 +435,21 @@ line_map::ApplyResult EntityPipeline::ApplyGlobalDelta(const line_map::MapDelta&
 
 void EntityPipeline::ResetGlobalMap(const line_map::MapSnapshot& snapshot) {
   global_map_ = line_map::LineMap::FromSnapshot(snapshot, options_.line_map);
+}
+
+const char* ToString(PipelineStage stage) {
+  switch (stage) {
+    case PipelineStage::kStrideSpreading: return "stride_spreading";
+    case PipelineStage::kOdometry: return "odometry";
+    case PipelineStage::kPlan: return "plan";
+    case PipelineStage::kSlam: return "slam";
+    case PipelineStage::kBentScans: return "bent_scans";
+    case PipelineStage::kGridInsertion: return "grid_insertion";
+    case PipelineStage::kLineExtraction: return "line_extraction";
+    case PipelineStage::kOther: return "other";
+    case PipelineStage::kCount: break;
+  }
+  return "unknown";
 }
 
 const char* ToString(CorrectionStatus status) {

@@ -1,5 +1,6 @@
 #include "pena/scan_matching/correlation_scan_matcher.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -28,11 +29,15 @@ struct CorrelationScanMatcher::Impl {
   // building them costs more than a search. This makes matching not thread-safe.
   std::map<int, std::unique_ptr<internal::MaxGrids>> max_grids;
 
-  const internal::MaxGrids& MaxGridsFor(const internal::WindowGrid& grid) {
+  // built_s: the time spent building them now (0 when cached).
+  const internal::MaxGrids& MaxGridsFor(const internal::WindowGrid& grid, double& built_s) {
     auto& slot = max_grids[grid.step_cells];
     const int levels = internal::TopLevel(grid) + 1;
+    built_s = 0.0;
     if (!slot || slot->levels() < levels) {
+      const auto started = std::chrono::steady_clock::now();
       slot = std::make_unique<internal::MaxGrids>(hits, grid.step_cells, 1 << (levels - 1));
+      built_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     }
     return *slot;
   }
@@ -110,11 +115,14 @@ MatchResult CorrelationScanMatcher::MatchBranchAndBound(const Points2& scan,
   ValidateWindow(window, options_);
   const internal::WindowGrid grid = internal::MakeWindowGrid(window, options_);
   long scored = 0;
+  double max_grids_s = 0.0;
+  const internal::MaxGrids& max_grids = impl_->MaxGridsFor(grid, max_grids_s);
   const internal::Candidate best =
-      internal::BranchAndBound(impl_->hits, impl_->MaxGridsFor(grid), scan, reference_from_prior,
-                               grid, scored);
-  return internal::Finish(impl_->neighbours, impl_->hits, options_, scan, grid, reference_from_prior, best,
-                          scored, polish);
+      internal::BranchAndBound(impl_->hits, max_grids, scan, reference_from_prior, grid, scored);
+  MatchResult result = internal::Finish(impl_->neighbours, impl_->hits, options_, scan, grid,
+                                        reference_from_prior, best, scored, polish);
+  result.max_grids_s = max_grids_s;
+  return result;
 }
 
 void CorrelationScanMatcher::Refine(const Points2& scan, MatchResult& result) const {

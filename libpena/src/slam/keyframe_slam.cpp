@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "edge_information.hpp"
 #include "submap_matcher.hpp"
@@ -26,8 +27,11 @@ double Distance(const Pose2& a, const Pose2& b) {
 }  // namespace
 
 struct KeyframeSlam::Impl {
-  explicit Impl(const SlamOptions& o) : options(o), submaps(o) {}
+  explicit Impl(const SlamOptions& o) : options(o), submaps(o, clock) {}
 
+  using Timed = StageClock<SlamStage>::Scope;
+  // Where Add's and Finish's time goes; mutable: the const candidate search is timed too.
+  mutable StageClock<SlamStage> clock;
   SlamOptions options;
   PoseGraph graph;
   std::vector<internal::Keyframe> keyframes;
@@ -50,6 +54,7 @@ struct KeyframeSlam::Impl {
 
   // Appends a node chained to the previous one by the odometry's motion.
   void AddKeyframe(const sensors::LaserScan& scan, const Pose2& world_from_odometry) {
+    std::optional<Timed> timed(std::in_place, clock, SlamStage::kKeyframes);
     internal::Keyframe keyframe{scan.stamp_s, world_from_odometry,
                                 internal::KeyframePoints(scan, options), path_m};
     if (keyframes.empty()) {
@@ -68,12 +73,14 @@ struct KeyframeSlam::Impl {
     }
     keyframes.push_back(std::move(keyframe));
     ++counts.keyframes;
+    timed.reset();
     const int index = static_cast<int>(keyframes.size()) - 1;
     if (index % options.loop_check_every == 0) TryLoopClosure(index);
   }
 
   // The nearest keyframe at least `min_path_m` back along the path, within `radius_m`.
   int LoopCandidate(int index, double radius_m, double min_path_m) const {
+    const Timed timed(clock, SlamStage::kCandidates);
     const Pose2& pose = graph.nodes()[static_cast<std::size_t>(index)];
     int best = -1;
     double best_m = radius_m;
@@ -93,6 +100,7 @@ struct KeyframeSlam::Impl {
 
   // The last keyframe at least `back_m` back along the path from `index` (-1: none).
   int LastAllowed(int index, double back_m) const {
+    const Timed timed(clock, SlamStage::kCandidates);
     const double limit_m = keyframes[static_cast<std::size_t>(index)].path_m - back_m;
     int last = -1;
     while (last + 1 < index && keyframes[static_cast<std::size_t>(last + 1)].path_m <= limit_m) {
@@ -113,7 +121,7 @@ struct KeyframeSlam::Impl {
     const int candidate =
         LoopCandidate(index, half_m + options.keyframe_distance_m, options.loop_min_path_m);
     if (candidate >= 0) {
-      if (auto found = MatchCandidate(index, candidate, half_m, half_rad)) {
+      if (auto found = MatchCandidate(index, candidate, half_m, half_rad, SlamStage::kLoopMatch)) {
         if (Close(*found)) {
           if (pending) Refuse(*pending);  // the graph moved: its correction is stale
           return true;
@@ -158,7 +166,8 @@ struct KeyframeSlam::Impl {
     std::optional<Found> found;
     for (double half_m = std::min(2.0 * options.loop_window_m, options.loop_wide_window_m); !found;
          half_m = std::min(2.0 * half_m, options.loop_wide_window_m)) {
-      found = MatchCandidate(index, candidate, half_m, options.loop_window_max_rad);
+      found = MatchCandidate(index, candidate, half_m, options.loop_window_max_rad,
+                             SlamStage::kWideMatch);
       if (half_m >= options.loop_wide_window_m) break;
     }
     if (!found) return false;
@@ -182,7 +191,10 @@ struct KeyframeSlam::Impl {
     return first || second;
   }
 
-  std::optional<Found> MatchCandidate(int index, int candidate, double half_m, double half_rad) {
+  // stage: kLoopMatch or kWideMatch, what the match's time counts to.
+  std::optional<Found> MatchCandidate(int index, int candidate, double half_m, double half_rad,
+                                      SlamStage stage) {
+    const Timed timed(clock, stage);
     ++counts.loop_checks;
     const auto match = submaps.Match(keyframes, graph.nodes(), candidate, options.submap_keyframes,
                                      LastAllowed(index, options.loop_min_path_m), graph_version,
@@ -242,6 +254,7 @@ struct KeyframeSlam::Impl {
   }
 
   void Optimize() {
+    const Timed timed(clock, SlamStage::kOptimisation);
     graph.Optimize(options.optimize_iterations);
     ++graph_version;
     ++counts.optimisations;
@@ -266,6 +279,7 @@ KeyframeSlam& KeyframeSlam::operator=(KeyframeSlam&&) noexcept = default;
 
 Pose2 KeyframeSlam::Add(const sensors::LaserScan& scan, const Pose2& world_from_odometry) {
   Impl& s = *impl_;
+  const StageClock<SlamStage>::Call call(s.clock, SlamStage::kOther);
   if (s.last_odometry) s.path_m += Distance(*s.last_odometry, world_from_odometry);
   s.last_odometry = world_from_odometry;
   ++s.counts.scans;
@@ -275,6 +289,7 @@ Pose2 KeyframeSlam::Add(const sensors::LaserScan& scan, const Pose2& world_from_
 }
 
 void KeyframeSlam::Finish() {
+  const StageClock<SlamStage>::Call call(impl_->clock, SlamStage::kOther);
   if (impl_->pending) impl_->Refuse(*impl_->pending);  // never confirmed
   impl_->Optimize();
 }
@@ -290,6 +305,21 @@ geometry::Trajectory KeyframeSlam::Trajectory() const {
 
 const PoseGraph& KeyframeSlam::graph() const { return impl_->graph; }
 const SlamCounts& KeyframeSlam::counts() const { return impl_->counts; }
+const SlamStageTimes& KeyframeSlam::stage_times() const { return impl_->clock.times(); }
+
+const char* ToString(SlamStage stage) {
+  switch (stage) {
+    case SlamStage::kKeyframes: return "keyframes";
+    case SlamStage::kCandidates: return "candidates";
+    case SlamStage::kSubmapBuild: return "submap_build";
+    case SlamStage::kLoopMatch: return "loop_match";
+    case SlamStage::kWideMatch: return "wide_match";
+    case SlamStage::kOptimisation: return "optimisation";
+    case SlamStage::kOther: return "other";
+    case SlamStage::kCount: break;
+  }
+  return "unknown";
+}
 const std::vector<LoopClosureRecord>& KeyframeSlam::closures() const { return impl_->closures; }
 
 }  // namespace pena::slam

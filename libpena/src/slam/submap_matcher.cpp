@@ -45,6 +45,7 @@ scan_matching::Points2 KeyframePoints(const sensors::LaserScan& scan, const Slam
 void SubmapMatcher::Build(const std::vector<Keyframe>& keyframes,
                           const std::vector<geometry::Pose2>& poses, int first, int centre,
                           int last) {
+  const StageClock<SlamStage>::Scope timed(*clock_, SlamStage::kSubmapBuild);
   const geometry::Pose2 centre_from_world =
       geometry::Inverse(poses[static_cast<std::size_t>(centre)]);
   scan_matching::Points2 points;
@@ -89,6 +90,8 @@ std::optional<LoopMatch> SubmapMatcher::Match(const std::vector<Keyframe>& keyfr
     window.size_theta_rad = 2.0 * std::ceil(half_rad / kStepThetaRad) * kStepThetaRad;
     result = matcher_->MatchBranchAndBound(scan, centre_from_prior, window,
                                            scan_matching::Polish::kGridPoseOnly);
+    // The max-grids are built at a submap's first match, again when a window needs more levels.
+    if (result.max_grids_s > 0.0) clock_->Move(SlamStage::kSubmapBuild, result.max_grids_s);
     if (!result.converged || result.score < options_.loop_min_score) return std::nullopt;
     const Edge edge = WindowEdge(result.grid_pose, centre_from_prior, window);
     if (edge == Edge::kNone) break;

@@ -9,6 +9,7 @@
 #include "pena/geometry/pose2.hpp"
 #include "pena/scan_matching/correlation_scan_matcher.hpp"
 #include "pena/scan_matching/point_set.hpp"
+#include "pena/slam/keyframe_slam.hpp"
 #include "pena/slam/slam_options.hpp"
 
 namespace pena::slam::internal {
@@ -33,7 +34,9 @@ struct LoopMatch {
 // Builds (and keeps while neither the centre nor the graph changed) the matcher of one submap.
 class SubmapMatcher {
  public:
-  explicit SubmapMatcher(const SlamOptions& options) : options_(options) {}
+  // `clock` (outliving this) times the submap builds.
+  SubmapMatcher(const SlamOptions& options, StageClock<SlamStage>& clock)
+      : options_(options), clock_(&clock) {}
 
   // Matches `scan` around `centre_from_prior` in a window of half-widths half_m / half_rad
   // against keyframes [centre - submap_keyframes, centre + submap_keyframes] no later than
@@ -53,6 +56,7 @@ class SubmapMatcher {
              int first, int centre, int last);
 
   SlamOptions options_;
+  StageClock<SlamStage>* clock_;
   std::optional<scan_matching::CorrelationScanMatcher> matcher_;
   int centre_ = -1;
   int first_ = -1;

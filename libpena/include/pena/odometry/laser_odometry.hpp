@@ -13,6 +13,7 @@
 #include "pena/scan_matching/correlation_scan_matcher.hpp"
 #include "pena/sensors/entity.hpp"
 #include "pena/sensors/record.hpp"
+#include "pena/stage_clock.hpp"
 
 namespace pena::odometry {
 
@@ -204,6 +205,28 @@ struct OdometryCounts {
   int laser_interlace = 0;
 };
 
+// Where LaserOdometry::Add spends its time (LaserOdometry::stage_times(); docs/odometry.md,
+// "Where the time goes"). Exclusive: a stage's seconds exclude the stages inside it.
+enum class OdometryStage {
+  kPrediction,      // the motion prior: dead reckoning or odometry records, Predict
+  kPoints,          // ranges to points, range filter (again after each deskew pass)
+  kDeskew,          // interlace evidence and the deskew passes' matches (refinement included)
+  kReference,       // place choice, keyframe densification, local map, the matcher's lookups
+                    // (branch and bound's max-grids included, built at a reference's first use)
+  kSearchBase,      // exhaustive search in the paper's window (refinement excluded)
+  kSearchWide,      // branch and bound in grown windows (refinement, max-grids excluded)
+  kRefinement,      // least squares after each search
+  kCovariance,      // the pose covariance and the reference's
+  kKeyframePolicy,  // weak direction, pace check, prior gate, keyframe decision
+  kOther,           // the rest of Add: stale check, bookkeeping
+  kCount
+};
+using OdometryStageTimes = StageTimes<OdometryStage>;
+
+// "prediction", "points", "deskew", "reference", "search_base", "search_wide", "refinement",
+// "covariance", "keyframe_policy", "other".
+const char* ToString(OdometryStage stage);
+
 // The chain for one entity. Not thread-safe; one instance per entity.
 class LaserOdometry {
  public:
@@ -218,6 +241,8 @@ class LaserOdometry {
 
   const OdometryCounts& counts() const;
   const dead_reckoning::DeadReckoningCounts& dead_reckoning_counts() const;
+  // Wall time per stage over the run; total: inside Add, calls: the records added.
+  const OdometryStageTimes& stage_times() const;
 
  private:
   struct Impl;

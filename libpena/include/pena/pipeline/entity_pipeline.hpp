@@ -33,6 +33,7 @@
 #include "pena/sensors/entity.hpp"
 #include "pena/sensors/record.hpp"
 #include "pena/slam/keyframe_slam.hpp"
+#include "pena/stage_clock.hpp"
 
 namespace pena::pipeline {
 
@@ -161,6 +162,25 @@ struct PipelineCounts {
   long bent_scans = 0;        // scans the bent-scan stage levelled or left out
 };
 
+// Where the pipeline's time goes (EntityPipeline::stage_times()). Exclusive: the odometry's and
+// the SLAM's own stages are in LaserOdometry::stage_times() and KeyframeSlam::stage_times().
+enum class PipelineStage {
+  kStrideSpreading,  // a person's strides spread over their scans
+  kOdometry,         // LaserOdometry::Add
+  kPlan,             // localisation on the plan
+  kSlam,             // KeyframeSlam::Add
+  kBentScans,        // the bent-scan stage's judgement and levelling
+  kGridInsertion,    // a scan into the local grid
+  kLineExtraction,   // the grid's image, line extraction, the line map's integration
+  kOther,            // the rest of Push, Next, EndOfInput, Place and Flush
+  kCount
+};
+using PipelineStageTimes = StageTimes<PipelineStage>;
+
+// "stride_spreading", "odometry", "plan", "slam", "bent_scans", "grid_insertion",
+// "line_extraction", "other".
+const char* ToString(PipelineStage stage);
+
 class PlanStage;
 
 // The chain of one entity. The odometry frame starts at world_from_start; until a correction
@@ -238,8 +258,12 @@ class EntityPipeline {
   // What the stride spreading did; nullopt when it is off (not a person, or disabled).
   std::optional<dead_reckoning::StrideInterpolationCounts> stride_spreading() const;
   const PipelineCounts& counts() const { return counts_; }
+  // Wall time per stage over the run; total: inside Push, Next, EndOfInput, Place and Flush.
+  const PipelineStageTimes& stage_times() const { return clock_.times(); }
 
  private:
+  using Timed = StageClock<PipelineStage>::Scope;
+  using TimedCall = StageClock<PipelineStage>::Call;
   static const EntityPipelineOptions& Validated(const EntityPipelineOptions& options);
   // The next record ready for the odometry, if any.
   std::optional<sensors::SensorRecord> PopReady();
@@ -299,6 +323,7 @@ class EntityPipeline {
   std::unique_ptr<grid::OccupancyGrid> bent_reference_;  // set by SetBentScanReference
   std::unique_ptr<slam::KeyframeSlam> slam_;  // the SLAM stage, when enabled
   PipelineCounts counts_;
+  StageClock<PipelineStage> clock_;
 };
 
 // "applied", "low_confidence", "unknown_stamp", "invalid".

@@ -13,6 +13,7 @@
 #include "pena/sensors/laser_scan.hpp"
 #include "pena/slam/pose_graph.hpp"
 #include "pena/slam/slam_options.hpp"
+#include "pena/stage_clock.hpp"
 
 namespace pena::slam {
 
@@ -27,6 +28,23 @@ struct SlamCounts {
   long loop_rejected = 0;     // dropped by the chi2 test after optimisation, or wide and unconfirmed
   long optimisations = 0;
 };
+
+// Where KeyframeSlam's time goes (KeyframeSlam::stage_times(); docs/slam.md). Exclusive: a
+// stage's seconds exclude the stages inside it.
+enum class SlamStage {
+  kKeyframes,     // a keyframe's points, its graph node and odometry edge
+  kCandidates,    // the loop candidate search over older keyframes
+  kSubmapBuild,   // a submap's points and matcher (lookups, max-grids) when centre or graph changed
+  kLoopMatch,     // the narrow window's branch and bound and refinement
+  kWideMatch,     // the wide checks' matches
+  kOptimisation,  // pose-graph solves (after each closure, its removal, and at Finish)
+  kOther,         // the rest of Add and Finish
+  kCount
+};
+using SlamStageTimes = StageTimes<SlamStage>;
+
+// "keyframes", "candidates", "submap_build", "loop_match", "wide_match", "optimisation", "other".
+const char* ToString(SlamStage stage);
 
 // A loop-closure match that scored and was well conditioned (docs/slam.md, "Closures"): what
 // it measured, what the graph predicted, and whether the optimisation kept it.
@@ -65,6 +83,8 @@ class KeyframeSlam {
   // The graph (nodes: keyframes in order).
   const PoseGraph& graph() const;
   const SlamCounts& counts() const;
+  // Wall time per stage over the run; total: inside Add and Finish, calls: those calls.
+  const SlamStageTimes& stage_times() const;
   // Every closure match that reached the graph, kept or dropped, in the order they were tried.
   const std::vector<LoopClosureRecord>& closures() const;
 
