@@ -2,7 +2,7 @@
 # Coverage-guided fuzzing of every decoder of outside input (docs/fuzzing.md): builds the
 # libFuzzer targets of tests/fuzz (clang, AddressSanitizer + UBSan; scripts/sanitizers.sh) and
 # runs each for SECONDS on its seed corpus, one after the other. Prints libFuzzer's final figures
-# per target (runs, cov, ft, corpus) and exits 1 if any target crashed; the crashing input is
+# per target (runs, runs/s, cov, ft, corpus) and exits 1 if any target crashed; the crashing input is
 # left in the work dir (crash-*, leak-*, timeout-*, oom-*) to add to tests/fuzz/corpus/<target>/.
 # usage: scripts/fuzz.sh [SECONDS] [TARGET...]     (default 60 s, every target)
 # Environment: PENA_FUZZ_SKIP (targets a run over all leaves out), PENA_ASAN_BUILD_DIR
@@ -48,8 +48,10 @@ for target in "${targets[@]}"; do
     failed+=("$target")
   fi
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")
   last=$(grep -E '^#[0-9]+' "$log" | tail -n 1 | grep -oE 'cov: [0-9]+ ft: [0-9]+ corp: [0-9]+/[0-9]+[a-zA-Z]*' || true)
-  printf 'fuzz: %-22s %4s s  %9s runs  %s  %s\n' "$target" "$seconds" "${runs:-?}" "${last:-}" "$status"
+  printf 'fuzz: %-22s %4s s  %9s runs  %6s runs/s  %s  %s\n' "$target" "$seconds" "${runs:-?}" \
+    "${rate:-?}" "${last:-}" "$status"
 done
 if ((${#failed[@]})); then
   echo "fuzz: ${failed[*]} failed; see $work/<target>/fuzz.log and the crash-* inputs beside it" >&2
