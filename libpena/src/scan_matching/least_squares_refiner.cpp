@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <Eigen/Cholesky>
-#include <chrono>
 #include <cmath>
 
 namespace pena::scan_matching::internal {
@@ -104,7 +103,6 @@ void RefineResult(const NearestNeighbours& neighbours, const HitGrid& hits,
   result.reference_from_scan = result.grid_pose;
   result.information = Eigen::Matrix3d::Zero();
   if (!result.converged) return;
-  const auto refine_start = std::chrono::steady_clock::now();
   const Refinement refinement = RefineLeastSquares(neighbours, options, scan, result.grid_pose);
   // Least squares polishes the grid pose; it is kept unless it lowers the score (a false pairing
   // pulled it away), so its reach is not tied to the grid step.
@@ -112,8 +110,6 @@ void RefineResult(const NearestNeighbours& neighbours, const HitGrid& hits,
     result.reference_from_scan = refinement.reference_from_scan;
   }
   result.information = refinement.information;
-  result.refine_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - refine_start).count();
 }
 
 }  // namespace pena::scan_matching::internal

@@ -50,7 +50,6 @@ struct MatchResult {
   long weight = 0;                        // the searched (graded) score at grid_pose
   int points = 0;
   long candidates_scored = 0;             // poses (or B&B nodes) scored: the work done
-  double refine_s = 0.0;                  // wall time of the least-squares refinement (profiling)
   double max_grids_s = 0.0;  // wall time building branch and bound's max-grids (first use; profiling)
   // J^T J of the point-to-line residuals at the refined pose, (x_m, y_m, theta_rad): a small
   // eigenvalue marks a direction the scan does not constrain (a featureless corridor).
